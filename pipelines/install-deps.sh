@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs, from Debian 12 packages, everything the project builds, tests and plots with.
+# Idempotent and non-interactive: packages already present are skipped by apt itself.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake pkg-config git
+  # numerics and geometry
+  libeigen3-dev libsuitesparse-dev libceres-dev libcgal-dev
+  # meshing (library and the command-line mesher)
+  libgmsh-dev gmsh
+  # I/O, configuration, command line, logging
+  libhdf5-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # figures (Debian's python3, /usr/bin/python3)
+  python3 python3-matplotlib python3-numpy python3-h5py
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -q
+$sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+echo "install-deps: done"
