@@ -24,7 +24,4 @@ struct Provenance {
   static Provenance from_json(const nlohmann::json& j);  // throws std::runtime_error when malformed
 };
 
-// 64-bit FNV-1a of the bytes, as 16 lowercase hex digits: the config hash.
-std::string fnv1a64_hex(std::string_view bytes);
-
 }  // namespace uhpc
