@@ -1,0 +1,120 @@
+#pragma once
+// Fixed-radius neighbour search with cell lists (2D and 3D).
+//
+// Points are binned into a uniform grid of cubic cells whose edge is at least the largest search
+// radius, so a query only visits its own cell and the 3^Dim around it. The points are stored sorted by
+// cell (counting sort), which keeps each cell's points contiguous in memory. Building is O(n); a query
+// costs O(points in 3^Dim cells).
+//
+// A grid covering a very sparse cloud (debris flying far away in the 3D runs) would have far more
+// cells than points; the cell edge is then enlarged until the grid has at most kMaxCellsPerPoint cells
+// per point. That keeps memory O(n) and queries correct (the stencil still covers the radius), at the
+// price of visiting more candidates in the sparse parts only.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace uhpc {
+
+// Compressed rows: the neighbours of query i are indices[offsets[i] .. offsets[i+1]), ascending.
+struct NeighbourList {
+  std::vector<std::int64_t> offsets{0};
+  std::vector<std::int32_t> indices;
+
+  std::size_t size() const { return offsets.size() - 1; }
+  std::int64_t begin(std::size_t i) const { return offsets[i]; }
+  std::int64_t end(std::size_t i) const { return offsets[i + 1]; }
+  std::int64_t count(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
+  const std::int32_t* row(std::size_t i) const { return indices.data() + offsets[i]; }
+};
+
+template <int Dim>
+class CellGrid {
+ public:
+  static constexpr double kMaxCellsPerPoint = 4.0;
+
+  CellGrid() = default;
+  // `points`: n points, Dim coordinates each, contiguous. `cell_size` > 0: the largest radius any
+  // query will use. The grid keeps a pointer to `points`: they must outlive it and not move.
+  CellGrid(const double* points, std::size_t n, double cell_size);
+
+  double cell_size() const { return cell_; }
+  std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
+
+  // Calls f(j, squared_distance) for every point j with |x - p_j| <= radius. Requires
+  // radius <= cell_size().
+  template <class F>
+  void for_each_within(const double* x, double radius, F&& f) const {
+    const double r2 = radius * radius;
+    visit_stencil(x, [&](std::int32_t j) {
+      const double d2 = squared_distance(x, points_ + static_cast<std::size_t>(j) * Dim);
+      if (d2 <= r2) f(j, d2);
+    });
+  }
+
+  // Calls f(j, squared_distance) for every point j whose own radius covers x: |x - p_j| < radius[j].
+  // Requires max(radius) <= cell_size().
+  template <class F>
+  void for_each_covering(const double* x, const double* radius, F&& f) const {
+    visit_stencil(x, [&](std::int32_t j) {
+      const double d2 = squared_distance(x, points_ + static_cast<std::size_t>(j) * Dim);
+      if (d2 < radius[j] * radius[j]) f(j, d2);
+    });
+  }
+
+ private:
+  static double squared_distance(const double* a, const double* b) {
+    double s = 0.0;
+    for (int d = 0; d < Dim; ++d) s += (a[d] - b[d]) * (a[d] - b[d]);
+    return s;
+  }
+
+  template <class G>
+  void visit_stencil(const double* x, G&& g) const {
+    if (cell_start_.empty()) return;
+    std::array<std::int64_t, Dim> lo{}, hi{};
+    for (int d = 0; d < Dim; ++d) {
+      if (!std::isfinite(x[d])) return;
+      const std::int64_t c = static_cast<std::int64_t>(std::floor((x[d] - origin_[d]) / cell_));
+      lo[d] = std::max<std::int64_t>(c - 1, 0);
+      hi[d] = std::min<std::int64_t>(c + 1, dims_[d] - 1);
+      if (lo[d] > hi[d]) return;  // the query is more than one cell outside the grid
+    }
+    if constexpr (Dim == 2) {
+      for (std::int64_t j = lo[1]; j <= hi[1]; ++j) {
+        // Cells of one row are adjacent in the sorted order: one contiguous range per row.
+        const std::int64_t first = lo[0] + dims_[0] * j, last = hi[0] + dims_[0] * j;
+        for (std::int64_t p = cell_start_[first]; p < cell_start_[last + 1]; ++p) g(sorted_[p]);
+      }
+    } else {
+      for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+        for (std::int64_t j = lo[1]; j <= hi[1]; ++j) {
+          const std::int64_t base = dims_[0] * (j + dims_[1] * k);
+          for (std::int64_t p = cell_start_[base + lo[0]]; p < cell_start_[base + hi[0] + 1]; ++p) g(sorted_[p]);
+        }
+    }
+  }
+
+  const double* points_ = nullptr;
+  double cell_ = 0.0;
+  std::array<double, Dim> origin_{};
+  std::array<std::int64_t, Dim> dims_{};
+  std::vector<std::int64_t> cell_start_;  // size cells+1: points of cell c are sorted_[start[c]..start[c+1])
+  std::vector<std::int32_t> sorted_;      // point indices ordered by cell
+};
+
+// For every query i, all points j with |q_i - p_j| <= radius. Parallel over queries (OpenMP).
+template <int Dim>
+NeighbourList neighbours_within(const double* queries, std::size_t n_queries, const double* points,
+                                std::size_t n_points, double radius);
+
+// For every query i, all nodes j whose support covers it: |q_i - x_j| < support_radius[j].
+// This is the list RK shape functions at q_i need. Parallel over queries (OpenMP).
+template <int Dim>
+NeighbourList nodes_covering(const double* queries, std::size_t n_queries, const double* nodes,
+                             const double* support_radius, std::size_t n_nodes);
+
+}  // namespace uhpc
