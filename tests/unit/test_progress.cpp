@@ -1,0 +1,78 @@
+// Progress reporting: the line format, durations, plain (non-terminal) output and thread safety.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "uhpc/progress.hpp"
+
+namespace {
+
+TEST(Progress, FormatsCountPercentageRateAndEta) {
+  EXPECT_EQ(uhpc::Progress::format("cells", 25, 100, 5.0, "cells"), "cells: 25/100 (25.0%), 5 cells/s, ETA 15s");
+  EXPECT_EQ(uhpc::Progress::format("run", 3, 0, 2.0, ""), "run: 3, 1.5/s");
+  EXPECT_EQ(uhpc::Progress::format("run", 10, 10, 2.0, ""), "run: 10/10 (100.0%), 5/s");
+}
+
+TEST(Progress, FormatsDurations) {
+  EXPECT_EQ(uhpc::format_duration(0.42), "0.4s");
+  EXPECT_EQ(uhpc::format_duration(42), "42s");
+  EXPECT_EQ(uhpc::format_duration(75), "1m15s");
+  EXPECT_EQ(uhpc::format_duration(3725), "1h02m");
+  EXPECT_EQ(uhpc::format_duration(-1), "?");
+}
+
+TEST(Progress, PlainOutputIsWholeLinesWithAFinalSummary) {
+  std::ostringstream out;
+  {
+    uhpc::ProgressOptions o;
+    o.out = &out;
+    o.tty = 0;
+    o.plain_interval_s = 0.0;  // print at every advance
+    uhpc::Progress p("steps", 4, o);
+    for (int i = 0; i < 4; ++i) p.advance();
+    p.finish();
+    p.finish();  // idempotent
+  }
+  const std::string text = out.str();
+  EXPECT_EQ(text.find('\r'), std::string::npos);
+  EXPECT_NE(text.find("steps: 1/4 (25.0%)"), std::string::npos);
+  EXPECT_NE(text.find("steps: 4/4 (100.0%)"), std::string::npos);
+  EXPECT_NE(text.find("done in"), std::string::npos);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 5);
+}
+
+TEST(Progress, PlainOutputIsThrottled) {
+  std::ostringstream out;
+  uhpc::ProgressOptions o;
+  o.out = &out;
+  o.tty = 0;
+  o.plain_interval_s = 3600.0;
+  uhpc::Progress p("steps", 1000, o);
+  for (int i = 0; i < 1000; ++i) p.advance();
+  p.finish();
+  // The first advance prints (nothing printed before), then nothing until finish().
+  const std::string text = out.str();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2);
+}
+
+TEST(Progress, CountsEveryAdvanceFromManyThreads) {
+  std::ostringstream out;
+  uhpc::ProgressOptions o;
+  o.out = &out;
+  o.tty = 1;
+  uhpc::Progress p("work", 40000, o);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&] {
+      for (int i = 0; i < 10000; ++i) p.advance();
+    });
+  for (auto& t : threads) t.join();
+  p.finish();
+  EXPECT_EQ(p.done(), 40000u);
+  EXPECT_NE(out.str().find("work: 40000/40000"), std::string::npos);
+}
+
+}  // namespace
