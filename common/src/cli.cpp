@@ -1,0 +1,72 @@
+#include "uhpc/cli.hpp"
+
+#include <algorithm>
+#include <exception>
+#include <iostream>
+
+#include "uhpc/errors.hpp"
+
+namespace uhpc {
+
+namespace {
+
+// Scripts grep stderr line by line: one failure, one line.
+std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  return text;
+}
+
+int report(const std::string& prefix, const std::string& message, int code) {
+  std::cerr << prefix << one_line(message) << std::endl;
+  return code;
+}
+
+// --help, --help-all and --version arrive as exceptions (CLI::Success and its subclasses, exit
+// code 0). Only the App can print its help, and App::exit() picks the selected subcommand's help.
+int on_success_request(const CLI::App* app, const std::string& program, const CLI::ParseError& e) {
+  if (app != nullptr) return app->exit(e);
+  if (e.get_name() == "CallForVersion") {
+    std::cout << e.what() << std::endl;
+    return kExitOk;
+  }
+  return report("internal error: ", program + ": " + e.get_name() + " needs run_main(app, body) to print the help", kExitNumerical);
+}
+
+int run(const CLI::App* app, const std::string& program, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    return report("error: ", e.what(), kExitBadInput);
+  } catch (const NumericalError& e) {
+    return report("numerical failure: ", e.what(), kExitNumerical);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return on_success_request(app, program, e);
+    return report("error: ", e.what(), kExitBadInput);
+  } catch (const std::exception& e) {
+    return report("internal error: ", e.what(), kExitNumerical);
+  } catch (...) {
+    return report("internal error: ", "unknown exception", kExitNumerical);
+  }
+}
+
+}  // namespace
+
+int run_main(CLI::App& app, const std::function<int()>& body) { return run(&app, app.get_name(), body); }
+
+int run_main(const std::string& program, const std::function<int()>& body) { return run(nullptr, program, body); }
+
+CLI::Option* add_set_option(CLI::App& app, std::vector<std::string>& overrides) {
+  return app
+      .add_option("--set", overrides,
+                  "Override one configuration entry; repeatable, later wins. KEY.PATH is the dotted "
+                  "key from the file's root (target.thickness_m); VALUE is read as JSON when it is "
+                  "valid JSON (0.05, true, [1,2], {\"a\":1}) and as plain text otherwise "
+                  "(material.model=afc). A key the program does not use is an error.")
+      ->type_name("KEY.PATH=VALUE")
+      ->allow_extra_args(false)
+      ->take_all();
+}
+
+}  // namespace uhpc

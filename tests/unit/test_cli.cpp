@@ -1,0 +1,186 @@
+// run_main's exit-code policy (ARCHITECTURE.md section 2: 0 ok, 2 bad input, 1 numerical failure)
+// with exactly one line on stderr, and the --set option.
+#include "uhpc/cli.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "uhpc/config.hpp"
+#include "uhpc/errors.hpp"
+
+namespace uhpc {
+namespace {
+
+struct Outcome {
+  int code;
+  std::string err;
+  std::string out;
+};
+
+// Runs run_main(app, body) with stdout and stderr captured.
+Outcome run_captured(CLI::App& app, const std::function<int()>& body) {
+  ::testing::internal::CaptureStdout();
+  ::testing::internal::CaptureStderr();
+  const int code = run_main(app, body);
+  std::string err = ::testing::internal::GetCapturedStderr();
+  std::string out = ::testing::internal::GetCapturedStdout();
+  return {code, err, out};
+}
+
+Outcome run_captured(const std::function<int()>& body) {
+  CLI::App app{"test program", "uhpc-test"};
+  return run_captured(app, body);
+}
+
+// A typical main: options, --set, parse inside run_main. `argv` without the program name.
+struct Program {
+  CLI::App app{"test program", "uhpc-test"};
+  std::string config;
+  std::vector<std::string> overrides;
+
+  Program() {
+    app.add_option("--config", config, "configuration file");
+    add_set_option(app, overrides);
+  }
+
+  Outcome run(std::vector<std::string> args) {
+    args.insert(args.begin(), "uhpc-test");
+    std::vector<char*> argv;
+    for (std::string& arg : args) argv.push_back(arg.data());
+    return run_captured(app, [&] {
+      app.parse(static_cast<int>(argv.size()), argv.data());
+      return kExitOk;
+    });
+  }
+};
+
+TEST(RunMain, ReturnsTheBodysCode) {
+  EXPECT_EQ(run_captured([] { return 0; }).code, 0);
+  const Outcome outcome = run_captured([] { return 7; });
+  EXPECT_EQ(outcome.code, 7);
+  EXPECT_EQ(outcome.err, "");
+}
+
+TEST(RunMain, InputErrorIsExitTwo) {
+  const Outcome outcome = run_captured([]() -> int {
+    throw InputError("case.json: key 'target.thickness_m': value -1 is out of range, must be > 0");
+  });
+  EXPECT_EQ(outcome.code, kExitBadInput);
+  EXPECT_EQ(outcome.err, "error: case.json: key 'target.thickness_m': value -1 is out of range, must be > 0\n");
+}
+
+TEST(RunMain, ConfigErrorsReachStderrUnchanged) {
+  const Outcome outcome = run_captured([]() -> int {
+    const Config config = Config::from_json(nlohmann::json::object(), "case.json");
+    return static_cast<int>(config.number("velocity_m_s"));
+  });
+  EXPECT_EQ(outcome.code, 2);
+  EXPECT_EQ(outcome.err, "error: case.json: key 'velocity_m_s': required key is missing\n");
+}
+
+TEST(RunMain, NumericalErrorIsExitOne) {
+  const Outcome outcome = run_captured([]() -> int { throw NumericalError("step 12: NaN in velocity at node 4"); });
+  EXPECT_EQ(outcome.code, kExitNumerical);
+  EXPECT_EQ(outcome.err, "numerical failure: step 12: NaN in velocity at node 4\n");
+}
+
+TEST(RunMain, OtherExceptionIsAnInternalError) {
+  const Outcome outcome = run_captured([]() -> int { throw std::logic_error("index out of bounds"); });
+  EXPECT_EQ(outcome.code, 1);
+  EXPECT_EQ(outcome.err, "internal error: index out of bounds\n");
+  const Outcome unknown = run_captured([]() -> int { throw 42; });
+  EXPECT_EQ(unknown.code, 1);
+  EXPECT_EQ(unknown.err, "internal error: unknown exception\n");
+}
+
+TEST(RunMain, MultiLineMessageBecomesOneLine) {
+  const Outcome outcome = run_captured([]() -> int { throw InputError("first\nsecond\n"); });
+  EXPECT_EQ(outcome.err, "error: first second\n");
+}
+
+TEST(RunMain, ProgramNameOverload) {
+  ::testing::internal::CaptureStderr();
+  EXPECT_EQ(run_main("uhpc-test", []() -> int { throw InputError("bad.json: unreadable"); }), 2);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "error: bad.json: unreadable\n");
+  ::testing::internal::CaptureStderr();
+  EXPECT_EQ(run_main("uhpc-test", []() -> int { throw CLI::CallForHelp(); }), 1);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(),
+            "internal error: uhpc-test: CallForHelp needs run_main(app, body) to print the help\n");
+  ::testing::internal::CaptureStdout();
+  EXPECT_EQ(run_main("uhpc-test", []() -> int { throw CLI::CallForVersion("uhpc 0.1.0", 0); }), 0);
+  EXPECT_EQ(::testing::internal::GetCapturedStdout(), "uhpc 0.1.0\n");
+}
+
+TEST(Cli, SetIsRepeatable) {
+  Program program;
+  const Outcome outcome = program.run({"--config", "case.json", "--set", "target.thickness_m=0.2", "--set=a.b=[1,2]"});
+  EXPECT_EQ(outcome.code, 0);
+  EXPECT_EQ(outcome.err, "");
+  EXPECT_EQ(program.config, "case.json");
+  EXPECT_EQ(program.overrides, (std::vector<std::string>{"target.thickness_m=0.2", "a.b=[1,2]"}));
+}
+
+TEST(Cli, SetTakesOneValuePerOccurrence) {
+  Program program;
+  std::vector<std::string> inputs;
+  program.app.add_option("inputs", inputs, "positional inputs");
+  EXPECT_EQ(program.run({"--set", "a=1", "extra.json"}).code, 0);
+  EXPECT_EQ(program.overrides, (std::vector<std::string>{"a=1"}));
+  EXPECT_EQ(inputs, (std::vector<std::string>{"extra.json"}));
+}
+
+TEST(Cli, BadOptionIsExitTwoWithOneLine) {
+  Program program;
+  const Outcome outcome = program.run({"--bogus"});
+  EXPECT_EQ(outcome.code, kExitBadInput);
+  EXPECT_EQ(outcome.err, "error: The following argument was not expected: --bogus\n");
+}
+
+TEST(Cli, MissingValueIsExitTwo) {
+  Program program;
+  const Outcome outcome = program.run({"--set"});
+  EXPECT_EQ(outcome.code, 2);
+  EXPECT_EQ(outcome.err.rfind("error: --set", 0), 0u) << outcome.err;
+  EXPECT_EQ(outcome.err.find('\n'), outcome.err.size() - 1) << outcome.err;
+}
+
+TEST(Cli, HelpPrintsUsageAndExitsZero) {
+  Program program;
+  const Outcome outcome = program.run({"--help"});
+  EXPECT_EQ(outcome.code, 0);
+  EXPECT_EQ(outcome.err, "");
+  EXPECT_NE(outcome.out.find("--set KEY.PATH=VALUE"), std::string::npos) << outcome.out;
+  EXPECT_NE(outcome.out.find("Override one configuration entry"), std::string::npos) << outcome.out;
+}
+
+TEST(Cli, HelpOfASubcommand) {
+  CLI::App app{"test program", "uhpc-test"};
+  std::vector<std::string> overrides;
+  CLI::App* run = app.add_subcommand("run", "run one cell");
+  add_set_option(*run, overrides);
+  std::vector<std::string> args{"uhpc-test", "run", "--help"};
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  const Outcome outcome = run_captured(app, [&] {
+    app.parse(static_cast<int>(argv.size()), argv.data());
+    return 0;
+  });
+  EXPECT_EQ(outcome.code, 0);
+  EXPECT_NE(outcome.out.find("run one cell"), std::string::npos) << outcome.out;
+  EXPECT_NE(outcome.out.find("--set"), std::string::npos) << outcome.out;
+}
+
+TEST(Cli, VersionExitsZero) {
+  Program program;
+  program.app.set_version_flag("--version", "uhpc-test 0.1.0");
+  const Outcome outcome = program.run({"--version"});
+  EXPECT_EQ(outcome.code, 0);
+  EXPECT_EQ(outcome.out, "uhpc-test 0.1.0\n");
+  EXPECT_EQ(outcome.err, "");
+}
+
+}  // namespace
+}  // namespace uhpc

@@ -4,6 +4,28 @@
 //   "<file>: key 'target.thickness_m': expected a number, got a string"
 // Reading is by explicit typed getters; the keys read are recorded, and finish() rejects any key in
 // the file that no getter asked for (a misspelt key is an error, never silently ignored).
+//
+// Typical use in a driver:
+//   Config cfg = Config::load(path, overrides);          // overrides from --set
+//   const Config target = cfg.section("target");
+//   const double h = target.number("thickness_m", Range::positive());
+//   ...
+//   cfg.finish();                                         // unknown keys, e.g. a typo in --set
+//
+// The reasons used in messages (after "<file>: key '<key>': "):
+//   required key is missing
+//   expected a number, got a string        (also: an integer, a boolean, a string, an object,
+//                                           an array of numbers, an array of objects)
+//   expected a finite number, got inf
+//   expected an integer, got 2.5
+//   value -1 is out of range, must be > 0
+//   value 'foo' is not one of: linear, quadratic
+//   expected at least 2 numbers, got 1
+//   unknown key (did you mean 'thickness_m'?)
+// Keys inside arrays are written with an index: "cell_sizes_m[2]", "layers[0].thickness_m".
+//
+// A Config and its sections share one record of what was read; the getters update that record
+// through const methods, so a Config must not be read from several threads at once.
 #include <cstddef>
 #include <initializer_list>
 #include <limits>
@@ -58,12 +80,21 @@ class Config {
                               std::size_t min_size = 1) const;
 
   bool has(const std::string& key) const;
+  // True when the key exists (an optional entry); records the key for finish()'s suggestions but
+  // does not count it as read.
   // A nested object as a Config that shares this one's record of read keys and its source name.
   Config section(const std::string& key) const;
+  // A non-empty array of objects (e.g. layers), each as a section named "key[i]", with at least
+  // `min_size` entries.
+  std::vector<Config> sections(const std::string& key, std::size_t min_size = 1) const;
   // Marks a whole subtree as read without validating it (for free-form blocks such as notes).
+  // Does nothing when the key is absent, so such blocks stay optional.
   void accept_any(const std::string& key) const;
 
-  // Throws for the first key (in document order) that no getter read. Call once all reading is done.
+  // Throws for the first key below this config's root that no getter read, in depth-first order
+  // with keys sorted (nlohmann::json keeps objects sorted, so "document order" is key order).
+  // An unread object that was never entered is reported as a whole ("targt", not "targt.x").
+  // Call once all reading is done.
   void finish() const;
 
   // Builds an InputError message for this config's file and a key below this config's root.
@@ -77,11 +108,17 @@ class Config {
 
  private:
   struct Shared;
-  Config(std::shared_ptr<Shared> shared, std::string prefix);
-  const nlohmann::json& at(const std::string& key) const;  // throws "missing"
+  struct Found;  // a resolved key: its node, JSON pointer and dotted name
+  Config(std::shared_ptr<Shared> shared, nlohmann::json::json_pointer pointer, std::string prefix);
+  Found at(const std::string& key) const;  // throws "required key is missing"
   std::string full_key(const std::string& key) const;
+  [[noreturn]] void fail_at(const Found& found, const std::string& reason) const;
+  void mark_read(const Found& found) const;
+  void check_read(const nlohmann::json& node, const nlohmann::json::json_pointer& pointer,
+                  const std::string& name) const;
 
   std::shared_ptr<Shared> shared_;
+  nlohmann::json::json_pointer pointer_;  // where this section's root is in the document
   std::string prefix_;  // dotted path of this section within the document ("" at the root)
 };
 
