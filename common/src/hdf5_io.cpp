@@ -1,0 +1,714 @@
+#include "uhpc/hdf5_io.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "uhpc/atomic_file.hpp"
+
+namespace uhpc {
+namespace detail {
+
+struct H5FileState {
+  hid_t file = H5I_INVALID_HID;
+  std::string name;  // the name users know the file by (the target, not the temporary)
+  H5WriteOptions options;
+
+  H5FileState() = default;
+  H5FileState(const H5FileState&) = delete;
+  H5FileState& operator=(const H5FileState&) = delete;
+  ~H5FileState() { close_quietly(); }
+
+  void close_quietly() noexcept;
+};
+
+}  // namespace detail
+
+namespace {
+
+// HDF5 prints its whole error stack to stderr by default. We report errors ourselves (with the
+// innermost HDF5 message in the exception), so the printing is switched off while one of our calls
+// runs and the caller's setting is restored afterwards: other code in the process keeps its handler.
+class QuietErrors {
+ public:
+  QuietErrors() {
+    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  QuietErrors(const QuietErrors&) = delete;
+  QuietErrors& operator=(const QuietErrors&) = delete;
+  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
+
+ private:
+  H5E_auto2_t function_ = nullptr;
+  void* data_ = nullptr;
+};
+
+herr_t keep_innermost(unsigned n, const H5E_error2_t* error, void* out) {
+  if (n == 0 && error->desc != nullptr) *static_cast<std::string*>(out) = error->desc;
+  return 0;
+}
+
+// The most specific message on HDF5's error stack (e.g. "unable to open file: name = ..., errno = 2,
+// error message = 'No such file or directory'"). Must be called right after the failing call: the
+// next HDF5 call, including a close in a destructor, clears the stack.
+std::string hdf5_reason() {
+  std::string reason;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &reason);
+  H5Eclear2(H5E_DEFAULT);
+  return reason.empty() ? "HDF5 error" : reason;
+}
+
+// Owns one HDF5 identifier and closes it with the matching function.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle(hid_t id, Closer closer) noexcept : id_(id), closer_(closer) {}
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)), closer_(other.closer_) {}
+  Handle& operator=(Handle&&) = delete;
+  ~Handle() {
+    if (id_ >= 0) closer_(id_);
+  }
+  hid_t get() const { return id_; }
+  explicit operator bool() const { return id_ >= 0; }
+
+ private:
+  hid_t id_;
+  Closer closer_;
+};
+
+// "a/b", "/a/b" and "a/b/" all name the same object; "" and "/" name the root (returned as "").
+// Empty components and "." or ".." are rejected: HDF5 would read them differently from the user.
+std::string normalize(const std::string& name, const std::string& file) {
+  const std::size_t first = name.find_first_not_of('/');
+  if (first == std::string::npos) return "";
+  const std::size_t last = name.find_last_not_of('/');
+  std::string path = name.substr(first, last - first + 1);
+  std::size_t begin = 0;
+  while (begin <= path.size()) {
+    const std::size_t end = std::min(path.find('/', begin), path.size());
+    const std::string part = path.substr(begin, end - begin);
+    if (part.empty() || part == "." || part == "..") {
+      throw std::invalid_argument(file + ": invalid object name '" + name + "'");
+    }
+    begin = end + 1;
+  }
+  return path;
+}
+
+std::string absolute(const std::string& normalized) { return "/" + normalized; }
+
+// H5Lexists fails, rather than answering false, when a parent is missing: test each level in turn.
+bool link_exists(hid_t file, const std::string& normalized) {
+  if (normalized.empty()) return true;
+  std::size_t end = 0;
+  while (end != std::string::npos) {
+    end = normalized.find('/', end + 1);
+    const std::string prefix = absolute(normalized.substr(0, end));
+    if (H5Lexists(file, prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+  }
+  return true;
+}
+
+std::string object_label(const std::string& name) { return name.empty() || name == "/" ? "/" : name; }
+
+// "<file>: <kind> '<name>': " - the common head of every message about one object.
+std::string prefix(const std::string& file, const char* kind, const std::string& name) {
+  return file + ": " + kind + " '" + object_label(name) + "': ";
+}
+
+// Opens a dataset or group (any object) by normalized name; throws "not found" naming `kind`.
+Handle open_object(const std::string& file_name, hid_t file, const std::string& name, const char* kind) {
+  const std::string path = normalize(name, file_name);
+  if (!link_exists(file, path)) throw std::runtime_error(prefix(file_name, kind, name) + "not found");
+  Handle object(H5Oopen(file, absolute(path).c_str(), H5P_DEFAULT), H5Oclose);
+  if (!object) throw std::runtime_error(prefix(file_name, kind, name) + "cannot open: " + hdf5_reason());
+  return object;
+}
+
+Handle open_dataset(const std::string& file_name, hid_t file, const std::string& name) {
+  Handle object = open_object(file_name, file, name, "dataset");
+  if (H5Iget_type(object.get()) != H5I_DATASET) {
+    throw std::runtime_error(prefix(file_name, "dataset", name) + "not a dataset");
+  }
+  return object;
+}
+
+Handle link_creation_with_parents() {
+  Handle lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+  if (!lcpl || H5Pset_create_intermediate_group(lcpl.get(), 1) < 0) {
+    throw std::runtime_error("HDF5: cannot set up group creation: " + hdf5_reason());
+  }
+  return lcpl;
+}
+
+std::size_t element_count(const H5Dims& dims) {
+  std::size_t n = 1;
+  for (std::size_t d : dims) n *= d;
+  return n;
+}
+
+// Contiguous storage unless compression is asked for; chunks then span whole rows and hold about
+// 1 MiB, a size that compresses well and still lets a reader fetch a few rows cheaply.
+Handle dataset_creation(const H5WriteOptions& options, const H5Dims& dims, std::size_t element_size) {
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  if (!dcpl) throw std::runtime_error("HDF5: cannot create dataset properties: " + hdf5_reason());
+  const bool deflate_available = H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0;
+  if (options.gzip_level == 0 || element_count(dims) == 0 || !deflate_available) return dcpl;
+
+  std::vector<hsize_t> chunk(dims.begin(), dims.end());
+  const std::size_t row_bytes = element_size * element_count(H5Dims(dims.begin() + 1, dims.end()));
+  const std::size_t rows = std::max<std::size_t>(1, (std::size_t{1} << 20) / std::max<std::size_t>(1, row_bytes));
+  chunk[0] = std::min<hsize_t>(chunk[0], rows);
+  if (H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
+      H5Pset_shuffle(dcpl.get()) < 0 || H5Pset_deflate(dcpl.get(), static_cast<unsigned>(options.gzip_level)) < 0) {
+    throw std::runtime_error("HDF5: cannot set up compression: " + hdf5_reason());
+  }
+  return dcpl;
+}
+
+void delete_attribute_if_present(hid_t object, const std::string& name, const std::string& where) {
+  const htri_t exists = H5Aexists(object, name.c_str());
+  if (exists < 0) throw std::runtime_error(where + "cannot query attribute '" + name + "': " + hdf5_reason());
+  if (exists > 0 && H5Adelete(object, name.c_str()) < 0) {
+    throw std::runtime_error(where + "cannot replace attribute '" + name + "': " + hdf5_reason());
+  }
+}
+
+// One value of `type` under `name` on `object`, replacing an existing attribute of that name.
+void write_attribute(hid_t object, const std::string& name, hid_t file_type, hid_t memory_type, const void* value,
+                     const std::string& where) {
+  delete_attribute_if_present(object, name, where);
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attribute(H5Acreate2(object, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (!attribute || H5Awrite(attribute.get(), memory_type, value) < 0) {
+    throw std::runtime_error(where + "cannot write attribute '" + name + "': " + hdf5_reason());
+  }
+}
+
+// Strings are stored fixed-length, null-terminated, UTF-8: the simplest form every reader
+// (h5py, h5dump, ParaView) understands, with no variable-length memory to free.
+void write_string_attribute(hid_t object, const std::string& name, const std::string& value,
+                            const std::string& where) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (!type || H5Tset_size(type.get(), value.size() + 1) < 0 || H5Tset_strpad(type.get(), H5T_STR_NULLTERM) < 0 ||
+      H5Tset_cset(type.get(), H5T_CSET_UTF8) < 0) {
+    throw std::runtime_error(where + "cannot make a string type: " + hdf5_reason());
+  }
+  write_attribute(object, name, type.get(), type.get(), value.c_str(), where);
+}
+
+Handle open_attribute(hid_t object, const std::string& name, const std::string& where) {
+  const htri_t exists = H5Aexists(object, name.c_str());
+  if (exists <= 0) throw std::runtime_error(where + "attribute '" + name + "': not found");
+  Handle attribute(H5Aopen(object, name.c_str(), H5P_DEFAULT), H5Aclose);
+  if (!attribute) throw std::runtime_error(where + "attribute '" + name + "': cannot open: " + hdf5_reason());
+  return attribute;
+}
+
+// Reads fixed-length and variable-length strings alike, so files from other tools (h5py writes
+// variable-length strings) are read too.
+std::string read_string_attribute(hid_t attribute, const std::string& where) {
+  Handle type(H5Aget_type(attribute), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING) throw std::runtime_error(where + "is not a string");
+  Handle space(H5Aget_space(attribute), H5Sclose);
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) throw std::runtime_error(where + "is not a single string");
+
+  if (H5Tis_variable_str(type.get()) > 0) {
+    Handle memory(H5Tcopy(H5T_C_S1), H5Tclose);
+    H5Tset_size(memory.get(), H5T_VARIABLE);
+    H5Tset_cset(memory.get(), H5Tget_cset(type.get()));
+    char* text = nullptr;
+    if (H5Aread(attribute, memory.get(), &text) < 0) throw std::runtime_error(where + "cannot read: " + hdf5_reason());
+    std::string value = text != nullptr ? text : "";
+    H5free_memory(text);
+    return value;
+  }
+  const std::size_t size = H5Tget_size(type.get());
+  std::string value(size, '\0');
+  if (size > 0 && H5Aread(attribute, type.get(), value.data()) < 0) {
+    throw std::runtime_error(where + "cannot read: " + hdf5_reason());
+  }
+  value.resize(std::min(size, value.find('\0')));
+  if (H5Tget_strpad(type.get()) == H5T_STR_SPACEPAD) value.erase(value.find_last_not_of(' ') + 1);
+  return value;
+}
+
+template <typename T>
+T read_number_attribute(hid_t attribute, hid_t memory_type, bool integers_only, const std::string& where) {
+  Handle type(H5Aget_type(attribute), H5Tclose);
+  const H5T_class_t kind = H5Tget_class(type.get());
+  if (kind != H5T_INTEGER && (integers_only || kind != H5T_FLOAT)) {
+    throw std::runtime_error(where + (integers_only ? "is not an integer" : "is not a number"));
+  }
+  Handle space(H5Aget_space(attribute), H5Sclose);
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) throw std::runtime_error(where + "is not a single value");
+  T value{};
+  if (H5Aread(attribute, memory_type, &value) < 0) throw std::runtime_error(where + "cannot read: " + hdf5_reason());
+  return value;
+}
+
+template <typename T>
+H5Array<T> read_array(const std::string& file_name, hid_t file, const std::string& name, hid_t memory_type,
+                      bool integers_only) {
+  Handle dataset = open_dataset(file_name, file, name);
+  const std::string where = prefix(file_name, "dataset", name);
+  Handle type(H5Dget_type(dataset.get()), H5Tclose);
+  const H5T_class_t kind = H5Tget_class(type.get());
+  if (kind != H5T_INTEGER && (integers_only || kind != H5T_FLOAT)) {
+    throw std::runtime_error(where + (integers_only ? "holds no integers" : "holds no numbers"));
+  }
+  Handle space(H5Dget_space(dataset.get()), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) throw std::runtime_error(where + "cannot read its shape: " + hdf5_reason());
+  std::vector<hsize_t> extents(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space.get(), extents.data(), nullptr);
+
+  H5Array<T> array;
+  array.dims.assign(extents.begin(), extents.end());
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  array.values.resize(static_cast<std::size_t>(std::max<hssize_t>(count, 0)));
+  if (!array.values.empty() &&
+      H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, array.values.data()) < 0) {
+    throw std::runtime_error(where + "cannot read: " + hdf5_reason());
+  }
+  return array;
+}
+
+void create_parent_directories(const std::filesystem::path& file) {
+  const std::filesystem::path parent = file.parent_path();
+  if (parent.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(parent, ec);
+  if (ec) {
+    throw std::runtime_error(file.string() + ": cannot create directory '" + parent.string() + "': " + ec.message());
+  }
+}
+
+}  // namespace
+
+void detail::H5FileState::close_quietly() noexcept {
+  if (file < 0) return;
+  QuietErrors quiet;
+  H5Fclose(file);
+  file = H5I_INVALID_HID;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// H5Output
+
+H5Output::H5Output() : state_(std::make_unique<detail::H5FileState>()) {}
+H5Output::H5Output(H5Output&&) noexcept = default;
+H5Output& H5Output::operator=(H5Output&&) noexcept = default;
+H5Output::~H5Output() = default;
+
+void H5Output::open_file(const std::filesystem::path& path, bool create, std::string display_name,
+                         H5WriteOptions options) {
+  if (options.gzip_level < 0 || options.gzip_level > 9) {
+    throw std::invalid_argument(display_name + ": gzip level must be in [0, 9], got " +
+                                std::to_string(options.gzip_level));
+  }
+  QuietErrors quiet;
+  // With the strong close degree, H5Fclose really closes the file (and reports errors) even if an
+  // object was left open, instead of silently deferring the close.
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  if (!fapl || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0) {
+    throw std::runtime_error(display_name + ": cannot set up file access: " + hdf5_reason());
+  }
+#if H5_VERSION_GE(1, 10, 7)
+  // An existing file is extended while a viewer (ParaView) may have it open: a reader's lock must
+  // not stop a simulation. A new file has no readers, and keeps the default locking.
+  if (!create) H5Pset_file_locking(fapl.get(), false, true);
+#endif
+  const hid_t file = create ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get())
+                            : H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get());
+  if (file < 0) {
+    const std::string what = create ? ": cannot create HDF5 file '" : ": cannot open HDF5 file '";
+    throw std::runtime_error(display_name + what + path.string() + "': " + hdf5_reason());
+  }
+  state_->close_quietly();
+  state_->file = file;
+  state_->name = std::move(display_name);
+  state_->options = options;
+}
+
+void H5Output::close_file() {
+  if (!is_open()) return;
+  QuietErrors quiet;
+  const herr_t status = H5Fclose(state_->file);
+  state_->file = H5I_INVALID_HID;
+  if (status < 0) throw std::runtime_error(state_->name + ": cannot finish writing: " + hdf5_reason());
+}
+
+void H5Output::flush_file() {
+  if (!is_open()) throw std::logic_error(file_name() + ": file is closed");
+  QuietErrors quiet;
+  if (H5Fflush(state_->file, H5F_SCOPE_LOCAL) < 0) {
+    throw std::runtime_error(state_->name + ": cannot flush: " + hdf5_reason());
+  }
+}
+
+void H5Output::close_file_quietly() noexcept {
+  if (state_) state_->close_quietly();
+}
+
+bool H5Output::is_open() const { return state_ && state_->file >= 0; }
+
+const std::string& H5Output::file_name() const {
+  static const std::string none = "(closed HDF5 file)";
+  return state_ ? state_->name : none;
+}
+
+std::int64_t H5Output::checked_int64(std::uint64_t value) const {
+  if (value > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+    throw std::out_of_range(file_name() + ": attribute value " + std::to_string(value) + " does not fit in int64");
+  }
+  return static_cast<std::int64_t>(value);
+}
+
+namespace {
+
+// Everything the write() overloads share: checks, dataset creation, data, and the "units" attribute.
+void write_dataset(const detail::H5FileState* state, bool open, const std::string& name, hid_t memory_type,
+                   hid_t file_type, std::size_t element_size, const void* data, const H5Dims& dims,
+                   const std::string& units) {
+  if (!open) throw std::logic_error((state ? state->name : std::string("HDF5 output")) + ": file is closed");
+  const std::string& file_name = state->name;
+  const std::string where = prefix(file_name, "dataset", name);
+  const std::string path = normalize(name, file_name);
+  if (path.empty()) throw std::invalid_argument(file_name + ": a dataset needs a name");
+  if (units.empty()) throw std::invalid_argument(where + "units must not be empty (\"1\" for dimensionless)");
+  if (dims.empty() || dims.size() > H5S_MAX_RANK) {
+    throw std::invalid_argument(where + "needs between 1 and " + std::to_string(H5S_MAX_RANK) + " dimensions");
+  }
+  if (data == nullptr && element_count(dims) > 0) throw std::invalid_argument(where + "no data given");
+
+  QuietErrors quiet;
+  if (link_exists(state->file, path)) throw std::invalid_argument(where + "already exists");
+  const std::vector<hsize_t> extents(dims.begin(), dims.end());
+  Handle space(H5Screate_simple(static_cast<int>(extents.size()), extents.data(), nullptr), H5Sclose);
+  if (!space) throw std::runtime_error(where + "cannot make its dataspace: " + hdf5_reason());
+  Handle lcpl = link_creation_with_parents();
+  Handle dcpl = dataset_creation(state->options, dims, element_size);
+  Handle dataset(H5Dcreate2(state->file, absolute(path).c_str(), file_type, space.get(), lcpl.get(), dcpl.get(),
+                            H5P_DEFAULT),
+                 H5Dclose);
+  if (!dataset) throw std::runtime_error(where + "cannot create: " + hdf5_reason());
+  if (element_count(dims) > 0 && H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
+    throw std::runtime_error(where + "cannot write: " + hdf5_reason());
+  }
+  write_string_attribute(dataset.get(), "units", units, where);
+}
+
+template <typename T>
+const T* checked_data(const std::vector<T>& values, const H5Dims& dims, const std::string& file_name,
+                      const std::string& name) {
+  if (values.size() != element_count(dims)) {
+    std::string shape;
+    for (std::size_t d : dims) shape += (shape.empty() ? "" : " x ") + std::to_string(d);
+    throw std::invalid_argument(prefix(file_name, "dataset", name) + std::to_string(values.size()) +
+                                " values do not fill dims " + shape);
+  }
+  return values.data();
+}
+
+}  // namespace
+
+// The file types are fixed little-endian, so files compare byte for byte across machines; HDF5
+// converts from the native memory types.
+void H5Output::write(const std::string& name, const double* data, const H5Dims& dims, const std::string& units) {
+  write_dataset(state_.get(), is_open(), name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, sizeof(double), data, dims, units);
+}
+void H5Output::write(const std::string& name, const std::int64_t* data, const H5Dims& dims,
+                     const std::string& units) {
+  write_dataset(state_.get(), is_open(), name, H5T_NATIVE_INT64, H5T_STD_I64LE, sizeof(std::int64_t), data, dims,
+                units);
+}
+void H5Output::write(const std::string& name, const std::int32_t* data, const H5Dims& dims,
+                     const std::string& units) {
+  write_dataset(state_.get(), is_open(), name, H5T_NATIVE_INT32, H5T_STD_I32LE, sizeof(std::int32_t), data, dims,
+                units);
+}
+void H5Output::write(const std::string& name, const std::uint8_t* data, const H5Dims& dims,
+                     const std::string& units) {
+  write_dataset(state_.get(), is_open(), name, H5T_NATIVE_UINT8, H5T_STD_U8LE, sizeof(std::uint8_t), data, dims,
+                units);
+}
+
+void H5Output::write(const std::string& name, const std::vector<double>& values, const std::string& units) {
+  write(name, values.data(), {values.size()}, units);
+}
+void H5Output::write(const std::string& name, const std::vector<std::int64_t>& values, const std::string& units) {
+  write(name, values.data(), {values.size()}, units);
+}
+void H5Output::write(const std::string& name, const std::vector<std::int32_t>& values, const std::string& units) {
+  write(name, values.data(), {values.size()}, units);
+}
+void H5Output::write(const std::string& name, const std::vector<std::uint8_t>& values, const std::string& units) {
+  write(name, values.data(), {values.size()}, units);
+}
+void H5Output::write(const std::string& name, const std::vector<double>& values, const H5Dims& dims,
+                     const std::string& units) {
+  write(name, checked_data(values, dims, file_name(), name), dims, units);
+}
+void H5Output::write(const std::string& name, const std::vector<std::int64_t>& values, const H5Dims& dims,
+                     const std::string& units) {
+  write(name, checked_data(values, dims, file_name(), name), dims, units);
+}
+
+void H5Output::create_group(const std::string& path) {
+  if (!is_open()) throw std::logic_error(file_name() + ": file is closed");
+  const std::string normalized = normalize(path, state_->name);
+  QuietErrors quiet;
+  if (link_exists(state_->file, normalized)) {
+    Handle object = open_object(state_->name, state_->file, path, "group");
+    if (H5Iget_type(object.get()) != H5I_GROUP) {
+      throw std::invalid_argument(prefix(state_->name, "group", path) + "exists and is not a group");
+    }
+    return;
+  }
+  Handle lcpl = link_creation_with_parents();
+  Handle group(H5Gcreate2(state_->file, absolute(normalized).c_str(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+               H5Gclose);
+  if (!group) throw std::runtime_error(prefix(state_->name, "group", path) + "cannot create: " + hdf5_reason());
+}
+
+void H5Output::remove(const std::string& name) {
+  if (!is_open()) throw std::logic_error(file_name() + ": file is closed");
+  const std::string normalized = normalize(name, state_->name);
+  if (normalized.empty()) throw std::invalid_argument(state_->name + ": the root group cannot be removed");
+  QuietErrors quiet;
+  if (!link_exists(state_->file, normalized)) return;
+  if (H5Ldelete(state_->file, absolute(normalized).c_str(), H5P_DEFAULT) < 0) {
+    throw std::runtime_error(prefix(state_->name, "object", name) + "cannot remove: " + hdf5_reason());
+  }
+}
+
+bool H5Output::has(const std::string& name) const {
+  if (!is_open()) throw std::logic_error(file_name() + ": file is closed");
+  const std::string normalized = normalize(name, state_->name);
+  QuietErrors quiet;
+  return link_exists(state_->file, normalized);
+}
+
+void H5Output::set_attribute(const std::string& object, const std::string& name, const std::string& value) {
+  if (!is_open()) throw std::logic_error(file_name() + ": file is closed");
+  QuietErrors quiet;
+  Handle target = open_object(state_->name, state_->file, object, "object");
+  write_string_attribute(target.get(), name, value, prefix(state_->name, "object", object));
+}
+
+void H5Output::set_attribute(const std::string& object, const std::string& name, double value) {
+  if (!is_open()) throw std::logic_error(file_name() + ": file is closed");
+  QuietErrors quiet;
+  Handle target = open_object(state_->name, state_->file, object, "object");
+  write_attribute(target.get(), name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value, prefix(state_->name, "object", object));
+}
+
+void H5Output::set_attribute(const std::string& object, const std::string& name, std::int64_t value) {
+  if (!is_open()) throw std::logic_error(file_name() + ": file is closed");
+  QuietErrors quiet;
+  Handle target = open_object(state_->name, state_->file, object, "object");
+  write_attribute(target.get(), name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value, prefix(state_->name, "object", object));
+}
+
+void H5Output::write_provenance(const Provenance& provenance) {
+  set_attribute("", "provenance", provenance.to_json().dump());
+}
+
+// ---------------------------------------------------------------------------------------------------
+// H5Writer
+
+H5Writer::H5Writer(std::filesystem::path target, H5WriteOptions options)
+    : target_(std::move(target)), temporary_(temporary_path_for(target_)) {
+  create_parent_directories(target_);
+  open_file(temporary_, true, target_.string(), options);
+}
+
+H5Writer::H5Writer(H5Writer&& other) noexcept
+    : H5Output(std::move(other)), target_(std::move(other.target_)), temporary_(std::move(other.temporary_)) {}
+
+H5Writer& H5Writer::operator=(H5Writer&& other) noexcept {
+  if (this != &other) {
+    discard();
+    H5Output::operator=(std::move(other));
+    target_ = std::move(other.target_);
+    temporary_ = std::move(other.temporary_);
+  }
+  return *this;
+}
+
+H5Writer::~H5Writer() { discard(); }
+
+void H5Writer::discard() noexcept {
+  if (!is_open()) return;
+  close_file_quietly();
+  std::error_code ignored;
+  std::filesystem::remove(temporary_, ignored);
+}
+
+void H5Writer::close() {
+  if (!is_open()) throw std::logic_error(target_.string() + ": already closed");
+  try {
+    close_file();
+    sync_to_disk(temporary_);
+    commit_temporary(temporary_, target_);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary_, ignored);
+    throw;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// H5Appender
+
+H5Appender::H5Appender(const std::filesystem::path& path, bool create, H5WriteOptions options) : path_(path) {
+  if (create) create_parent_directories(path_);
+  open_file(path_, create, path_.string(), options);
+}
+
+H5Appender H5Appender::create(const std::filesystem::path& path, H5WriteOptions options) {
+  return H5Appender(path, true, options);
+}
+
+H5Appender H5Appender::open(const std::filesystem::path& path, H5WriteOptions options) {
+  return H5Appender(path, false, options);
+}
+
+void H5Appender::flush() { flush_file(); }
+
+void H5Appender::close() {
+  if (!is_open()) throw std::logic_error(path_.string() + ": already closed");
+  close_file();
+  sync_to_disk(path_);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// H5Reader
+
+H5Reader::H5Reader(const std::filesystem::path& path)
+    : path_(path), state_(std::make_unique<detail::H5FileState>()) {
+  state_->name = path_.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path_, ec)) throw std::runtime_error(state_->name + ": no such file");
+  QuietErrors quiet;
+  state_->file = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (state_->file < 0) throw std::runtime_error(state_->name + ": cannot open as HDF5: " + hdf5_reason());
+}
+
+H5Reader::H5Reader(H5Reader&&) noexcept = default;
+H5Reader& H5Reader::operator=(H5Reader&&) noexcept = default;
+H5Reader::~H5Reader() = default;
+
+bool H5Reader::has(const std::string& name) const {
+  const std::string normalized = normalize(name, state_->name);
+  QuietErrors quiet;
+  return link_exists(state_->file, normalized);
+}
+
+std::vector<std::string> H5Reader::children(const std::string& group) const {
+  QuietErrors quiet;
+  Handle object = open_object(state_->name, state_->file, group, "group");
+  const std::string where = prefix(state_->name, "group", group);
+  if (H5Iget_type(object.get()) != H5I_GROUP) throw std::runtime_error(where + "not a group");
+  H5G_info_t info;
+  if (H5Gget_info(object.get(), &info) < 0) throw std::runtime_error(where + "cannot list: " + hdf5_reason());
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t length =
+        H5Lget_name_by_idx(object.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    if (length < 0) throw std::runtime_error(where + "cannot list: " + hdf5_reason());
+    std::string name(static_cast<std::size_t>(length) + 1, '\0');
+    H5Lget_name_by_idx(object.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(), H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(length));
+    names.push_back(std::move(name));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+H5Dims H5Reader::dims(const std::string& dataset) const {
+  QuietErrors quiet;
+  Handle object = open_dataset(state_->name, state_->file, dataset);
+  Handle space(H5Dget_space(object.get()), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) throw std::runtime_error(prefix(state_->name, "dataset", dataset) + "cannot read its shape");
+  std::vector<hsize_t> extents(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space.get(), extents.data(), nullptr);
+  return H5Dims(extents.begin(), extents.end());
+}
+
+H5Array<double> H5Reader::read_doubles(const std::string& dataset) const {
+  QuietErrors quiet;
+  return read_array<double>(state_->name, state_->file, dataset, H5T_NATIVE_DOUBLE, false);
+}
+
+H5Array<std::int64_t> H5Reader::read_int64(const std::string& dataset) const {
+  QuietErrors quiet;
+  return read_array<std::int64_t>(state_->name, state_->file, dataset, H5T_NATIVE_INT64, true);
+}
+
+std::string H5Reader::units(const std::string& dataset) const {
+  QuietErrors quiet;
+  Handle object = open_dataset(state_->name, state_->file, dataset);
+  const std::string where = prefix(state_->name, "dataset", dataset);
+  if (H5Aexists(object.get(), "units") <= 0) throw std::runtime_error(where + "no 'units' attribute");
+  Handle attribute = open_attribute(object.get(), "units", where);
+  return read_string_attribute(attribute.get(), where + "attribute 'units': ");
+}
+
+bool H5Reader::has_attribute(const std::string& object, const std::string& name) const {
+  QuietErrors quiet;
+  if (!link_exists(state_->file, normalize(object, state_->name))) return false;
+  Handle target = open_object(state_->name, state_->file, object, "object");
+  return H5Aexists(target.get(), name.c_str()) > 0;
+}
+
+std::string H5Reader::string_attribute(const std::string& object, const std::string& name) const {
+  QuietErrors quiet;
+  Handle target = open_object(state_->name, state_->file, object, "object");
+  const std::string where = prefix(state_->name, "object", object);
+  Handle attribute = open_attribute(target.get(), name, where);
+  return read_string_attribute(attribute.get(), where + "attribute '" + name + "': ");
+}
+
+double H5Reader::double_attribute(const std::string& object, const std::string& name) const {
+  QuietErrors quiet;
+  Handle target = open_object(state_->name, state_->file, object, "object");
+  const std::string where = prefix(state_->name, "object", object);
+  Handle attribute = open_attribute(target.get(), name, where);
+  return read_number_attribute<double>(attribute.get(), H5T_NATIVE_DOUBLE, false,
+                                       where + "attribute '" + name + "': ");
+}
+
+std::int64_t H5Reader::int64_attribute(const std::string& object, const std::string& name) const {
+  QuietErrors quiet;
+  Handle target = open_object(state_->name, state_->file, object, "object");
+  const std::string where = prefix(state_->name, "object", object);
+  Handle attribute = open_attribute(target.get(), name, where);
+  return read_number_attribute<std::int64_t>(attribute.get(), H5T_NATIVE_INT64, true,
+                                             where + "attribute '" + name + "': ");
+}
+
+Provenance H5Reader::provenance() const {
+  const std::string text = string_attribute("", "provenance");
+  const std::string where = state_->name + ": attribute 'provenance': ";
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded()) throw std::runtime_error(where + "not valid JSON");
+  try {
+    return Provenance::from_json(j);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(where + e.what());
+  }
+}
+
+}  // namespace uhpc

@@ -1,20 +1,27 @@
 #pragma once
 // Files are written under a temporary name in the same directory and renamed into place, so a reader
-// (or a crash) never sees a half-written result.
+// (or a crash) never sees a half-written result: the target either holds its old content or the
+// complete new one. One writer per target at a time (the temporary name is per process).
 #include <filesystem>
 #include <string_view>
 
 namespace uhpc {
 
 // The temporary name used for `target` while it is being written: "<dir>/.<name>.tmp.<pid>".
+// Throws std::invalid_argument when `target` has no file name.
 std::filesystem::path temporary_path_for(const std::filesystem::path& target);
 
-// Writes `content` to `target` atomically (temporary file, flush, rename). Creates missing parent
-// directories. Throws std::runtime_error naming the path on failure.
+// Writes `content` to `target` atomically (temporary file, write, fsync, rename). Creates missing
+// parent directories. Throws std::runtime_error naming the path and the OS reason on failure; the
+// temporary file is removed then.
 void write_text_atomic(const std::filesystem::path& target, std::string_view content);
 
 // Renames a finished temporary file onto its target (used by writers that produce the file
 // themselves, e.g. HDF5). Throws std::runtime_error naming both paths on failure.
 void commit_temporary(const std::filesystem::path& temporary, const std::filesystem::path& target);
+
+// Flushes a finished file's data to the storage device (fsync), so that a rename or an index that
+// refers to it never outlives the data after a power loss. Throws std::runtime_error naming the path.
+void sync_to_disk(const std::filesystem::path& file);
 
 }  // namespace uhpc
