@@ -4,6 +4,10 @@
 #include <limits>
 #include <stdexcept>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace uhpc {
 
 template <int Dim>
@@ -60,27 +64,46 @@ CellGrid<Dim>::CellGrid(const double* points, std::size_t n, double cell_size) :
 
 namespace {
 
-// Two passes over the queries (count, then fill) so that the result is one contiguous array built in
-// parallel without locks, and identical whatever the thread count.
+// Cell edge relative to the search radius (see the header).
+constexpr double kCellFraction = 0.5;
+
+// One pass: each thread searches a contiguous block of queries into its own buffer, then the blocks
+// are copied into place. The result is one contiguous array built without locks, and identical
+// whatever the thread count (rows are sorted).
 template <class Visit>
 NeighbourList build_rows(std::size_t n_queries, Visit&& visit) {
   NeighbourList out;
   out.offsets.assign(n_queries + 1, 0);
   const std::int64_t nq = static_cast<std::int64_t>(n_queries);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::int64_t i = 0; i < nq; ++i) {
-    std::int64_t c = 0;
-    visit(static_cast<std::size_t>(i), [&](std::int32_t) { ++c; });
-    out.offsets[i + 1] = c;
-  }
-  for (std::int64_t i = 0; i < nq; ++i) out.offsets[i + 1] += out.offsets[i];
-  out.indices.resize(static_cast<std::size_t>(out.offsets[nq]));
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::int64_t i = 0; i < nq; ++i) {
-    std::int32_t* row = out.indices.data() + out.offsets[i];
-    std::int64_t c = 0;
-    visit(static_cast<std::size_t>(i), [&](std::int32_t j) { row[c++] = j; });
-    std::sort(row, row + c);
+  std::vector<std::vector<std::int32_t>> blocks;
+  std::vector<std::int64_t> block_begin;
+#pragma omp parallel
+  {
+#ifdef _OPENMP
+    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+#else
+    const int threads = 1, t = 0;
+#endif
+#pragma omp single
+    {
+      blocks.resize(threads);
+      block_begin.resize(threads + 1);
+    }
+    const std::int64_t first = nq * t / threads, last = nq * (t + 1) / threads;
+    std::vector<std::int32_t>& buffer = blocks[t];
+    for (std::int64_t i = first; i < last; ++i) {
+      const std::size_t start = buffer.size();
+      visit(static_cast<std::size_t>(i), [&](std::int32_t j) { buffer.push_back(j); });
+      std::sort(buffer.begin() + static_cast<std::ptrdiff_t>(start), buffer.end());
+      out.offsets[i + 1] = static_cast<std::int64_t>(buffer.size() - start);
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::int64_t i = 0; i < nq; ++i) out.offsets[i + 1] += out.offsets[i];
+      out.indices.resize(static_cast<std::size_t>(out.offsets[nq]));
+    }
+    std::copy(buffer.begin(), buffer.end(), out.indices.begin() + out.offsets[first]);
   }
   return out;
 }
@@ -90,7 +113,7 @@ NeighbourList build_rows(std::size_t n_queries, Visit&& visit) {
 template <int Dim>
 NeighbourList neighbours_within(const double* queries, std::size_t n_queries, const double* points,
                                 std::size_t n_points, double radius) {
-  const CellGrid<Dim> grid(points, n_points, radius);
+  const CellGrid<Dim> grid(points, n_points, kCellFraction * radius);
   return build_rows(n_queries, [&](std::size_t i, auto&& emit) {
     grid.for_each_within(queries + i * Dim, radius, [&](std::int32_t j, double) { emit(j); });
   });
@@ -105,9 +128,9 @@ NeighbourList nodes_covering(const double* queries, std::size_t n_queries, const
     a_max = std::max(a_max, support_radius[j]);
   }
   if (n_nodes == 0) return build_rows(n_queries, [](std::size_t, auto&&) {});
-  const CellGrid<Dim> grid(nodes, n_nodes, a_max);
+  const CellGrid<Dim> grid(nodes, n_nodes, kCellFraction * a_max);
   return build_rows(n_queries, [&](std::size_t i, auto&& emit) {
-    grid.for_each_covering(queries + i * Dim, support_radius, [&](std::int32_t j, double) { emit(j); });
+    grid.for_each_covering(queries + i * Dim, support_radius, a_max, [&](std::int32_t j, double) { emit(j); });
   });
 }
 

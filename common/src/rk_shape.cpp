@@ -4,6 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+// GCC 12 reports a false -Wmaybe-uninitialized inside Eigen's tridiagonalization (9x9 fixed-size
+// eigenproblem of the 3D quadratic basis) once it is inlined here.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
