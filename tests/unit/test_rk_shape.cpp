@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -112,6 +113,8 @@ void expect_reproduction(rk::Basis basis, std::uint32_t seed) {
         worst_grad = std::max(worst_grad, std::abs(grad[i] - monomial_derivative(xp, m, Dim, i)));
     }
   }
+  std::printf("  %dD %s basis, %zu points: worst reproduction error %.2e, worst gradient error x spacing %.2e\n",
+              Dim, rk::basis_name(basis).c_str(), nq, worst, worst_grad * c.s);
   EXPECT_LT(worst, kTol) << "worst reproduction error";
   // Gradients carry a factor 1/h (h ~ 2 spacings): compare on the scale of the function's variation.
   EXPECT_LT(worst_grad * c.s, kTol) << "worst gradient reproduction error " << worst_grad;
