@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "test_support.hpp"
 #include "uhpc/errors.hpp"
 
 namespace uhpc {
@@ -36,23 +37,13 @@ Config make(const char* text, const std::vector<std::string>& overrides = {}) {
 }
 
 // A file in a fresh directory, removed with the fixture.
-class ConfigFile : public ::testing::Test {
+class ConfigFile : public uhpc::test::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("uhpc_test_config_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
   std::string write(const std::string& name, const std::string& text) {
     const std::string path = (dir_ / name).string();
     std::ofstream(path) << text;
     return path;
   }
-
-  std::filesystem::path dir_;
 };
 
 // ---------------------------------------------------------------------------------------------

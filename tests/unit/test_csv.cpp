@@ -5,20 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.hpp"
 #include "uhpc/csv.hpp"
 #include "uhpc/errors.hpp"
 
 namespace {
 
-// The message of the InputError `f` throws ("" if it throws none).
 template <typename F>
 std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const uhpc::InputError& e) {
-    return e.what();
-  }
-  return "";
+  return uhpc::test::error_of<uhpc::InputError>(f);
 }
 
 const char* const kSample =

@@ -17,6 +17,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "test_support.hpp"
 #include "uhpc/atomic_file.hpp"
 #include "uhpc/hdf5_io.hpp"
 #include "uhpc/xdmf.hpp"
@@ -30,27 +31,9 @@ using uhpc::H5Writer;
 
 namespace {
 
-// A fresh directory per test, removed afterwards.
-class H5Test : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("uhpc_h5_" + std::string(info->test_suite_name()) + "_" + info->name() +
-                                        "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  fs::path dir_;
-};
+using H5Test = uhpc::test::ScratchDirTest;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+std::string read_text(const fs::path& path) { return uhpc::test::read_file(path); }
 
 std::size_t count_of(const std::string& text, const std::string& what) {
   std::size_t n = 0;
@@ -61,12 +44,7 @@ std::size_t count_of(const std::string& text, const std::string& what) {
 // The exception message of `f`, or "" if it did not throw std::runtime_error.
 template <typename F>
 std::string runtime_error_of(F&& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
+  return uhpc::test::error_of<std::runtime_error>(f);
 }
 
 uhpc::Provenance sample_provenance() {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "uhpc/errors.hpp"
+#include "test_support.hpp"
 #include "uhpc/sdel_handoff.hpp"
 
 namespace {
@@ -16,12 +17,7 @@ using nlohmann::json;
 
 template <typename F>
 std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const uhpc::InputError& e) {
-    return e.what();
-  }
-  return "";
+  return uhpc::test::error_of<uhpc::InputError>(f);
 }
 
 // A valid document to break one key at a time.
