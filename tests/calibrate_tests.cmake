@@ -1,0 +1,1 @@
+# Test suites of uhpc-calibrate (uhpc_add_test(<layer> <source> [libs...])).
