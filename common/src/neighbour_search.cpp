@@ -11,7 +11,16 @@
 namespace uhpc {
 
 template <int Dim>
-CellGrid<Dim>::CellGrid(const double* points, std::size_t n, double cell_size) : points_(points), cell_(cell_size) {
+CellGrid<Dim>::CellGrid(const double* points, std::size_t n, double cell_size) {
+  build(points, n, cell_size);
+}
+
+template <int Dim>
+void CellGrid<Dim>::build(const double* points, std::size_t n, double cell_size) {
+  points_ = points;
+  cell_ = cell_size;
+  cell_start_.clear();
+  sorted_.clear();
   if (!(cell_size > 0.0) || !std::isfinite(cell_size)) throw std::invalid_argument("CellGrid: cell size must be > 0");
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
     throw std::invalid_argument("CellGrid: more points than 32-bit indices allow");
@@ -43,7 +52,7 @@ CellGrid<Dim>::CellGrid(const double* points, std::size_t n, double cell_size) :
 
   std::int64_t cells = 1;
   for (int d = 0; d < Dim; ++d) cells *= dims_[d];
-  std::vector<std::int64_t> cell_of(n);
+  cell_of_.resize(n);
   cell_start_.assign(static_cast<std::size_t>(cells) + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     std::int64_t c = 0, stride = 1;
@@ -53,13 +62,13 @@ CellGrid<Dim>::CellGrid(const double* points, std::size_t n, double cell_size) :
       c += k * stride;
       stride *= dims_[d];
     }
-    cell_of[i] = c;
+    cell_of_[i] = c;
     ++cell_start_[c + 1];
   }
   for (std::int64_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
   sorted_.resize(n);
-  std::vector<std::int64_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) sorted_[fill[cell_of[i]]++] = static_cast<std::int32_t>(i);
+  fill_.assign(cell_start_.begin(), cell_start_.end() - 1);  // counting sort: next free slot per cell
+  for (std::size_t i = 0; i < n; ++i) sorted_[fill_[cell_of_[i]]++] = static_cast<std::int32_t>(i);
 }
 
 namespace {
@@ -69,14 +78,14 @@ constexpr double kCellFraction = 0.5;
 
 // One pass: each thread searches a contiguous block of queries into its own buffer, then the blocks
 // are copied into place. The result is one contiguous array built without locks, and identical
-// whatever the thread count (rows are sorted).
+// whatever the thread count (rows are sorted). The buffers and `out` keep their capacity from one
+// call to the next, so repeated searches (every step of a 3D run) do not allocate.
 template <class Visit>
-NeighbourList build_rows(std::size_t n_queries, Visit&& visit) {
-  NeighbourList out;
-  out.offsets.assign(n_queries + 1, 0);
+void build_rows(std::size_t n_queries, Visit&& visit, NeighbourList& out,
+                std::vector<std::vector<std::int32_t>>& blocks) {
+  out.offsets.resize(n_queries + 1);
+  out.offsets[0] = 0;
   const std::int64_t nq = static_cast<std::int64_t>(n_queries);
-  std::vector<std::vector<std::int32_t>> blocks;
-  std::vector<std::int64_t> block_begin;
 #pragma omp parallel
   {
 #ifdef _OPENMP
@@ -85,12 +94,10 @@ NeighbourList build_rows(std::size_t n_queries, Visit&& visit) {
     const int threads = 1, t = 0;
 #endif
 #pragma omp single
-    {
-      blocks.resize(threads);
-      block_begin.resize(threads + 1);
-    }
+    if (blocks.size() < static_cast<std::size_t>(threads)) blocks.resize(threads);
     const std::int64_t first = nq * t / threads, last = nq * (t + 1) / threads;
     std::vector<std::int32_t>& buffer = blocks[t];
+    buffer.clear();
     for (std::int64_t i = first; i < last; ++i) {
       const std::size_t start = buffer.size();
       visit(static_cast<std::size_t>(i), [&](std::int32_t j) { buffer.push_back(j); });
@@ -105,33 +112,62 @@ NeighbourList build_rows(std::size_t n_queries, Visit&& visit) {
     }
     std::copy(buffer.begin(), buffer.end(), out.indices.begin() + out.offsets[first]);
   }
-  return out;
 }
 
-}  // namespace
-
-template <int Dim>
-NeighbourList neighbours_within(const double* queries, std::size_t n_queries, const double* points,
-                                std::size_t n_points, double radius) {
-  const CellGrid<Dim> grid(points, n_points, kCellFraction * radius);
-  return build_rows(n_queries, [&](std::size_t i, auto&& emit) {
-    grid.for_each_within(queries + i * Dim, radius, [&](std::int32_t j, double) { emit(j); });
-  });
-}
-
-template <int Dim>
-NeighbourList nodes_covering(const double* queries, std::size_t n_queries, const double* nodes,
-                             const double* support_radius, std::size_t n_nodes) {
+double largest_radius(const double* support_radius, std::size_t n_nodes) {
   double a_max = 0.0;
   for (std::size_t j = 0; j < n_nodes; ++j) {
     if (!(support_radius[j] > 0.0)) throw std::invalid_argument("nodes_covering: support radius must be > 0");
     a_max = std::max(a_max, support_radius[j]);
   }
-  if (n_nodes == 0) return build_rows(n_queries, [](std::size_t, auto&&) {});
-  const CellGrid<Dim> grid(nodes, n_nodes, kCellFraction * a_max);
-  return build_rows(n_queries, [&](std::size_t i, auto&& emit) {
-    grid.for_each_covering(queries + i * Dim, support_radius, a_max, [&](std::int32_t j, double) { emit(j); });
-  });
+  return a_max;
+}
+
+}  // namespace
+
+template <int Dim>
+void neighbours_within(const double* queries, std::size_t n_queries, const double* points, std::size_t n_points,
+                       double radius, NeighbourList& out, NeighbourWorkspace<Dim>& workspace) {
+  workspace.grid.build(points, n_points, kCellFraction * radius);
+  const CellGrid<Dim>& grid = workspace.grid;
+  build_rows(
+      n_queries,
+      [&](std::size_t i, auto&& emit) {
+        grid.for_each_within(queries + i * Dim, radius, [&](std::int32_t j, double) { emit(j); });
+      },
+      out, workspace.blocks);
+}
+
+template <int Dim>
+void nodes_covering(const double* queries, std::size_t n_queries, const double* nodes, const double* support_radius,
+                    std::size_t n_nodes, NeighbourList& out, NeighbourWorkspace<Dim>& workspace) {
+  const double a_max = largest_radius(support_radius, n_nodes);
+  workspace.grid.build(nodes, n_nodes, n_nodes == 0 ? 1.0 : kCellFraction * a_max);
+  const CellGrid<Dim>& grid = workspace.grid;
+  build_rows(
+      n_queries,
+      [&](std::size_t i, auto&& emit) {
+        grid.for_each_covering(queries + i * Dim, support_radius, a_max, [&](std::int32_t j, double) { emit(j); });
+      },
+      out, workspace.blocks);
+}
+
+template <int Dim>
+NeighbourList neighbours_within(const double* queries, std::size_t n_queries, const double* points,
+                                std::size_t n_points, double radius) {
+  NeighbourList out;
+  NeighbourWorkspace<Dim> workspace;
+  neighbours_within<Dim>(queries, n_queries, points, n_points, radius, out, workspace);
+  return out;
+}
+
+template <int Dim>
+NeighbourList nodes_covering(const double* queries, std::size_t n_queries, const double* nodes,
+                             const double* support_radius, std::size_t n_nodes) {
+  NeighbourList out;
+  NeighbourWorkspace<Dim> workspace;
+  nodes_covering<Dim>(queries, n_queries, nodes, support_radius, n_nodes, out, workspace);
+  return out;
 }
 
 template class CellGrid<2>;
@@ -140,5 +176,13 @@ template NeighbourList neighbours_within<2>(const double*, std::size_t, const do
 template NeighbourList neighbours_within<3>(const double*, std::size_t, const double*, std::size_t, double);
 template NeighbourList nodes_covering<2>(const double*, std::size_t, const double*, const double*, std::size_t);
 template NeighbourList nodes_covering<3>(const double*, std::size_t, const double*, const double*, std::size_t);
+template void neighbours_within<2>(const double*, std::size_t, const double*, std::size_t, double, NeighbourList&,
+                                   NeighbourWorkspace<2>&);
+template void neighbours_within<3>(const double*, std::size_t, const double*, std::size_t, double, NeighbourList&,
+                                   NeighbourWorkspace<3>&);
+template void nodes_covering<2>(const double*, std::size_t, const double*, const double*, std::size_t, NeighbourList&,
+                                NeighbourWorkspace<2>&);
+template void nodes_covering<3>(const double*, std::size_t, const double*, const double*, std::size_t, NeighbourList&,
+                                NeighbourWorkspace<3>&);
 
 }  // namespace uhpc

@@ -106,3 +106,26 @@ TEST(NeighbourSearch, EmptyInputsGiveEmptyRows) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(NeighbourSearch, ReusedWorkspaceGivesTheSameListsAsAFreshSearch) {
+  uhpc::NeighbourWorkspace<3> workspace;
+  uhpc::NeighbourList reused;
+  for (std::uint32_t seed : {21u, 22u, 23u}) {
+    // Clouds of different sizes, so the buffers grow and shrink between calls.
+    const auto nodes = random_cloud<3>(500 + 700 * (seed - 20), 1.0, seed);
+    std::vector<double> a(nodes.size() / 3, 0.08 + 0.02 * (seed - 20));
+    const auto q = random_cloud<3>(300 * (seed - 20), 1.0, seed + 50);
+    uhpc::nodes_covering<3>(q.data(), q.size() / 3, nodes.data(), a.data(), a.size(), reused, workspace);
+    const auto fresh = uhpc::nodes_covering<3>(q.data(), q.size() / 3, nodes.data(), a.data(), a.size());
+    EXPECT_EQ(reused.offsets, fresh.offsets);
+    EXPECT_EQ(reused.indices, fresh.indices);
+    uhpc::neighbours_within<3>(q.data(), q.size() / 3, nodes.data(), a.size(), 0.07, reused, workspace);
+    const auto fresh_within = uhpc::neighbours_within<3>(q.data(), q.size() / 3, nodes.data(), a.size(), 0.07);
+    EXPECT_EQ(reused.offsets, fresh_within.offsets);
+    EXPECT_EQ(reused.indices, fresh_within.indices);
+  }
+}
+
+}  // namespace

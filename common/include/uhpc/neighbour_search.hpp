@@ -41,6 +41,8 @@ class CellGrid {
   // `points`: n points, Dim coordinates each, contiguous; `cell_size` > 0. The grid keeps a pointer to
   // `points`: they must outlive it and not move.
   CellGrid(const double* points, std::size_t n, double cell_size);
+  // Rebuilds the grid for new points, reusing this grid's memory.
+  void build(const double* points, std::size_t n, double cell_size);
 
   double cell_size() const { return cell_; }
   std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
@@ -107,6 +109,16 @@ class CellGrid {
   std::array<std::int64_t, Dim> dims_{};
   std::vector<std::int64_t> cell_start_;  // size cells+1: points of cell c are sorted_[start[c]..start[c+1])
   std::vector<std::int32_t> sorted_;      // point indices ordered by cell
+  std::vector<std::int64_t> cell_of_, fill_;  // build scratch, kept for the next build
+};
+
+// Memory kept between repeated searches (a 3D run rebuilds its lists every step): the grid and the
+// per-thread buffers keep their capacity, so a search into an existing NeighbourList allocates
+// nothing once sizes have settled.
+template <int Dim>
+struct NeighbourWorkspace {
+  CellGrid<Dim> grid;
+  std::vector<std::vector<std::int32_t>> blocks;
 };
 
 // For every query i, all points j with |q_i - p_j| <= radius. Parallel over queries (OpenMP).
@@ -119,5 +131,13 @@ NeighbourList neighbours_within(const double* queries, std::size_t n_queries, co
 template <int Dim>
 NeighbourList nodes_covering(const double* queries, std::size_t n_queries, const double* nodes,
                              const double* support_radius, std::size_t n_nodes);
+
+// The same two searches into an existing list, reusing its memory and the workspace's.
+template <int Dim>
+void neighbours_within(const double* queries, std::size_t n_queries, const double* points, std::size_t n_points,
+                       double radius, NeighbourList& out, NeighbourWorkspace<Dim>& workspace);
+template <int Dim>
+void nodes_covering(const double* queries, std::size_t n_queries, const double* nodes, const double* support_radius,
+                    std::size_t n_nodes, NeighbourList& out, NeighbourWorkspace<Dim>& workspace);
 
 }  // namespace uhpc
