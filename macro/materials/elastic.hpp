@@ -1,0 +1,34 @@
+#pragma once
+// Linear (hypo)elastic material: sigma += K tr(de) I + 2 G dev(de) in the co-rotated frame.
+#include "materials/material_step.hpp"
+
+namespace uhpc::macro {
+
+struct ElasticParams {
+  double density_kg_m3 = 0;
+  double bulk_modulus_Pa = 0;
+  double shear_modulus_Pa = 0;
+};
+
+class ElasticMaterial {
+ public:
+  struct State {
+    Mat3 stress = Mat3::Zero();
+  };
+
+  // Throws std::invalid_argument unless density, K and G are > 0.
+  explicit ElasticMaterial(const ElasticParams& params);
+
+  void update(State& state, const MaterialStep& step) const;
+  // Dilatational wave speed sqrt((K + 4G/3) / rho) at the current density.
+  double wave_speed(const State& state, double density_ratio) const;
+  double reference_density() const { return p_.density_kg_m3; }
+  // Energy dissipated per unit reference volume so far (none for an elastic law).
+  double dissipated_energy(const State&) const { return 0.0; }
+  const ElasticParams& params() const { return p_; }
+
+ private:
+  ElasticParams p_;
+};
+
+}  // namespace uhpc::macro

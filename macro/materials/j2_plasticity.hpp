@@ -1,0 +1,41 @@
+#pragma once
+// J2 (von Mises) plasticity with linear isotropic hardening, for verification on classical metal
+// impact problems: elastic predictor, radial return of the deviatoric trial stress at fixed pressure,
+// sigma_y(eps_p) = yield_stress + hardening_modulus * eps_p.
+#include "materials/material_step.hpp"
+
+namespace uhpc::macro {
+
+struct J2Params {
+  double density_kg_m3 = 0;
+  double bulk_modulus_Pa = 0;
+  double shear_modulus_Pa = 0;
+  double yield_stress_Pa = 0;
+  double hardening_modulus_Pa = 0;  // d sigma_y / d eps_p (>= 0)
+};
+
+class J2Material {
+ public:
+  struct State {
+    Mat3 stress = Mat3::Zero();
+    double plastic_strain = 0.0;  // equivalent plastic strain
+    double plastic_work = 0.0;    // integral of sigma_y d eps_p, J per unit volume
+  };
+
+  // Throws std::invalid_argument for non-positive density, moduli or yield stress, or negative H.
+  explicit J2Material(const J2Params& params);
+
+  void update(State& state, const MaterialStep& step) const;
+  double wave_speed(const State& state, double density_ratio) const;
+  double reference_density() const { return p_.density_kg_m3; }
+  double dissipated_energy(const State& state) const { return state.plastic_work; }
+  double yield_stress(double plastic_strain) const {
+    return p_.yield_stress_Pa + p_.hardening_modulus_Pa * plastic_strain;
+  }
+  const J2Params& params() const { return p_; }
+
+ private:
+  J2Params p_;
+};
+
+}  // namespace uhpc::macro

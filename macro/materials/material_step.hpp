@@ -1,0 +1,31 @@
+#pragma once
+// What a material law sees of one particle in one explicit step. The solver computes the rate of
+// deformation D and the spin W from the RK velocity gradient, rotates the stress with the Jaumann
+// rate (objectivity is kinematics, done once for every law), and hands the law the strain increment
+// D dt in that co-rotated frame. Laws are then small-strain incremental updates, testable at a point.
+#include <cmath>
+
+#include <Eigen/Core>
+
+namespace uhpc::macro {
+
+using Mat3 = Eigen::Matrix3d;
+
+struct MaterialStep {
+  Mat3 strain_increment = Mat3::Zero();  // D dt, symmetric
+  double dt_s = 0.0;
+  double density_ratio = 1.0;            // rho / rho0 (> 0)
+  double spacing_m = 0.0;                // the particle's nodal spacing h_I (length-scale-aware laws)
+};
+
+inline double pressure_of(const Mat3& stress) { return -stress.trace() / 3.0; }  // > 0 in compression
+
+inline Mat3 deviator(const Mat3& m) { return m - (m.trace() / 3.0) * Mat3::Identity(); }
+
+// von Mises equivalent stress q = sqrt(3 J2) = sqrt(3/2 s:s).
+inline double von_mises(const Mat3& stress) {
+  const Mat3 s = deviator(stress);
+  return std::sqrt(1.5 * s.cwiseProduct(s).sum());
+}
+
+}  // namespace uhpc::macro
