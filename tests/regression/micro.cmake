@@ -1,1 +1,37 @@
 # Regression cases of uhpc-micro (uhpc_regression_case / uhpc_bad_input_case).
+
+# --- uhpc-micro generate / generate-ensemble on the shipped defaults ---
+uhpc_regression_case(NAME micro_generate OUTPUT cell.json
+  COMMAND $<TARGET_FILE:uhpc-micro> -q generate --config data/micro_cell.json)
+uhpc_regression_case(NAME micro_generate_ensemble OUTPUT statistics.json
+  COMMAND $<TARGET_FILE:uhpc-micro> -q generate-ensemble --config data/micro_ensemble.json --set realizations=2
+          --set cell.discretization.nominal_spacing_m=1e-4)
+
+# --- bad input: exit 2, one line naming file, key and reason ---
+set(_micro $<TARGET_FILE:uhpc-micro>)
+set(_bad ${UHPC_REGRESSION_OUT}/bad)
+uhpc_bad_input_case(NAME micro_porosity_out_of_range
+  STDERR "error: data/microstructure.json: key 'area_porosity': value 0.35 is out of range, must be in (0, 0.3)"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set microstructure.area_porosity=0.35 --out ${_bad})
+uhpc_bad_input_case(NAME micro_porosity_zero
+  STDERR "error: data/microstructure.json: key 'area_porosity': value 0 is out of range, must be in (0, 0.3)"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set microstructure.area_porosity=0 --out ${_bad})
+uhpc_bad_input_case(NAME micro_burr_nonpositive
+  STDERR "error: data/microstructure.json: key 'burr.k': value -1 is out of range, must be > 0"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set microstructure.burr.k=-1 --out ${_bad})
+uhpc_bad_input_case(NAME micro_truncation_below_gamma
+  STDERR "error: data/microstructure.json: key 'burr.truncation_m': value 5e-05 must exceed gamma_m = 7.7e-05 (the smallest pore)"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set microstructure.burr.truncation_m=5e-5 --out ${_bad})
+uhpc_bad_input_case(NAME micro_cell_too_small
+  STDERR "error: data/micro_cell.json: key 'cell_size_m': cell side 0.0003 m cannot hold the smallest pore (7.7e-05 m) with two ligaments of 0.00015 m"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set cell_size_m=0.0003 --out ${_bad})
+uhpc_bad_input_case(NAME micro_porosity_unreachable
+  STDERR "error: data/microstructure.json: key 'area_porosity': porosity 0.0002 +- 1e-05 is unreachable: one smallest pore (7.7e-05 m) alone gives 0.00052"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set microstructure.area_porosity=0.0002
+          --set porosity.tolerance=1e-5 --out ${_bad})
+uhpc_bad_input_case(NAME micro_misspelt_key
+  STDERR "error: data/micro_cell.json: key 'seeds.per_pores': unknown key (did you mean 'per_pore'?)"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set seeds.per_pores=1 --out ${_bad})
+uhpc_bad_input_case(NAME micro_ensemble_bad_cell_override
+  STDERR "error: data/micro_cell.json: key 'discretization.nominal_spacing_m': value -1 is out of range, must be > 0"
+  COMMAND ${_micro} generate-ensemble --config data/micro_ensemble.json --set cell.discretization.nominal_spacing_m=-1 --out ${_bad})

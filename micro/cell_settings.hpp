@@ -1,0 +1,42 @@
+#pragma once
+// Reading and validating the cell configuration (data/micro_cell.json) and the microstructure it
+// names (data/microstructure.json) into the physics-side options. Every problem is a uhpc::InputError
+// naming the file, the key and the reason.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cell_generator.hpp"
+#include "cell_mesh.hpp"
+#include "cell_picture.hpp"
+#include "uhpc/config.hpp"
+
+namespace uhpc::micro {
+
+struct CellSettings {
+  CellOptions cell;
+  MeshOptions mesh;
+  bool mesh_enabled = true;
+  PictureOptions picture;
+  std::uint64_t seed = 0;
+  std::string microstructure_file;  // as resolved (relative paths are relative to the cell config)
+  std::string config_hash;          // hash of the effective cell config and microstructure together
+};
+
+// Overrides ("key=value" from --set) whose key starts with `prefix` + "." are returned with the prefix
+// stripped and removed from `overrides`.
+std::vector<std::string> take_prefixed_overrides(std::vector<std::string>& overrides, const std::string& prefix);
+
+// Loads both files (overrides "microstructure.*" go to the microstructure file, the rest to the cell
+// config), validates everything and checks that a cell can be generated at all (cell too small,
+// unreachable porosity). Calls finish() on both configs. `size_override_m` > 0 replaces cell_size_m
+// and `seed_override` (when set) replaces seed: the ensemble uses them.
+CellSettings load_cell_settings(const std::string& cell_config_path, std::vector<std::string> overrides,
+                                double size_override_m = 0.0, const std::uint64_t* seed_override = nullptr);
+
+// Turns a CellGenerationError of generate_cell into the InputError the user sees, naming the key that
+// controls it in `settings`' files.
+[[noreturn]] void rethrow_as_input_error(const CellGenerationError& e, const CellSettings& settings,
+                                         const std::string& cell_config_path);
+
+}  // namespace uhpc::micro
