@@ -9,20 +9,11 @@
 #include <gtest/gtest.h>
 
 #include "cell_generator.hpp"
+#include "micro_paper_options.hpp"
 
 namespace uhpc::micro {
 namespace {
 
-CellOptions paper_options(double side_m) {
-  CellOptions o;
-  o.side_m = side_m;
-  o.burr = {3.9313, 1.1698, 290.43e-6, 77e-6};
-  o.truncation_m = 1.3e-3;
-  o.porosity = {0.034, 0.0005, 1000000};
-  o.placement = {150e-6, 100000};
-  o.seeds = {2, 50e-6, 0.0};
-  return o;
-}
 
 double distance(const Vec2& a, const Vec2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
 

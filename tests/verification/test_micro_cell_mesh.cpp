@@ -8,21 +8,12 @@
 #include <gtest/gtest.h>
 
 #include "cell_generator.hpp"
+#include "micro_paper_options.hpp"
 #include "cell_mesh.hpp"
 
 namespace uhpc::micro {
 namespace {
 
-CellOptions paper_options(double side_m) {
-  CellOptions o;
-  o.side_m = side_m;
-  o.burr = {3.9313, 1.1698, 290.43e-6, 77e-6};
-  o.truncation_m = 1.3e-3;
-  o.porosity = {0.034, 0.0005, 1000000};
-  o.placement = {150e-6, 100000};
-  o.seeds = {2, 50e-6, 0.0};
-  return o;
-}
 
 double porous_area(const CellGeometry& g) { return g.cell_area_m2() - g.pore_area_m2(); }
 
