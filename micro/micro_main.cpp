@@ -5,9 +5,12 @@
 //   uhpc-micro generate-ensemble --config data/micro_ensemble.json --out DIR [--set key=value]...
 //       every size x realization: DIR/<size>/cell_NN/{cell.json,cell.svg}, DIR/statistics.json and
 //       DIR/pore_histogram.csv (figure data for pipelines/plot_micro.py)
+//   uhpc-micro elastic --config data/micro_elastic.json --out DIR [--set key=value]...
+//       the cell of the named cell config, its elastic uniaxial tension with the RK Galerkin solver:
+//       DIR/elastic.json (E0_bar, sigma_bar, energy check, counts, timing, provenance)
 //
-// --set microstructure.<key>=... overrides data/microstructure.json (Burr law, porosity);
-// for generate-ensemble, --set cell.<key>=... overrides the cell config. (`run` and `ensemble`, the
+// --set microstructure.<key>=... overrides data/microstructure.json (Burr law, porosity, matrix);
+// for generate-ensemble and elastic, --set cell.<key>=... overrides the cell config. (`run` and `ensemble`, the
 // cohesive-crack analyses, come with the next issue.)
 #include <chrono>
 #include <filesystem>
@@ -41,10 +44,18 @@ int main(int argc, char** argv) {
   ensemble->add_option("--out", out, "output directory")->required();
   uhpc::add_set_option(*ensemble, overrides);
 
+  CLI::App* elastic = app.add_subcommand(
+      "elastic", "elastic uniaxial tension of one cell (RK Galerkin): E0_bar and the energy check in elastic.json");
+  elastic->add_option("--config", config_path, "elastic analysis configuration (JSON), e.g. data/micro_elastic.json")
+      ->required();
+  elastic->add_option("--out", out, "output directory")->required();
+  uhpc::add_set_option(*elastic, overrides);
+
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);
     uhpc::init_logging("uhpc-micro", quiet ? uhpc::Verbosity::Quiet : uhpc::Verbosity::Normal);
     if (generate->parsed()) return uhpc::micro::run_generate(config_path, overrides, out);
+    if (elastic->parsed()) return uhpc::micro::run_elastic(config_path, overrides, out);
     return uhpc::micro::run_generate_ensemble(config_path, overrides, out);
   });
 }

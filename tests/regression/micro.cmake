@@ -35,3 +35,22 @@ uhpc_bad_input_case(NAME micro_misspelt_key
 uhpc_bad_input_case(NAME micro_ensemble_bad_cell_override
   STDERR "error: data/micro_cell.json: key 'discretization.nominal_spacing_m': value -1 is out of range, must be > 0"
   COMMAND ${_micro} generate-ensemble --config data/micro_ensemble.json --set cell.discretization.nominal_spacing_m=-1 --out ${_bad})
+
+# --- uhpc-micro elastic: RK Galerkin elastic response of the shipped cell ---
+uhpc_regression_case(NAME micro_elastic OUTPUT elastic.json
+  COMMAND $<TARGET_FILE:uhpc-micro> -q elastic --config data/micro_elastic.json)
+uhpc_bad_input_case(NAME micro_elastic_misspelt_key
+  STDERR "error: data/micro_elastic.json: key 'quadrature.triangle_point': unknown key (did you mean 'triangle_points'?)"
+  COMMAND ${_micro} elastic --config data/micro_elastic.json --set quadrature.triangle_point=6 --out ${_bad})
+uhpc_bad_input_case(NAME micro_elastic_no_such_rule
+  STDERR "error: data/micro_elastic.json: key 'quadrature.triangle_points': value 5 is not one of: 1, 3, 6, 7, 12"
+  COMMAND ${_micro} elastic --config data/micro_elastic.json --set quadrature.triangle_points=5 --out ${_bad})
+uhpc_bad_input_case(NAME micro_elastic_incompressible
+  STDERR "error: data/microstructure.json: key 'matrix.poissons_ratio': value 0.5 is out of range, must be in (-1, 0.5)"
+  COMMAND ${_micro} elastic --config data/micro_elastic.json --set microstructure.matrix.poissons_ratio=0.5 --out ${_bad})
+uhpc_bad_input_case(NAME micro_elastic_needs_mesh
+  STDERR "error: data/micro_cell.json: key 'discretization.mesh': must be true: the elastic analysis integrates on the mesh"
+  COMMAND ${_micro} elastic --config data/micro_elastic.json --set cell.discretization.mesh=false --out ${_bad})
+uhpc_bad_input_case(NAME micro_elastic_support_too_small
+  STDERR "error: data/micro_elastic.json: key 'rk.support_factor': value 0.5 is out of range, must be in [1, 4]"
+  COMMAND ${_micro} elastic --config data/micro_elastic.json --set rk.support_factor=0.5 --out ${_bad})
