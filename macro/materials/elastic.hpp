@@ -23,6 +23,7 @@ class ElasticMaterial {
   // Dilatational wave speed sqrt((K + 4G/3) / rho) at the current density.
   double wave_speed(const State& state, double density_ratio) const;
   double reference_density() const { return p_.density_kg_m3; }
+  Moduli moduli(const State&) const { return {p_.bulk_modulus_Pa, p_.shear_modulus_Pa}; }
   // Energy dissipated per unit reference volume so far (none for an elastic law).
   double dissipated_energy(const State&) const { return 0.0; }
   const ElasticParams& params() const { return p_; }

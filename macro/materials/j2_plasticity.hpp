@@ -28,6 +28,8 @@ class J2Material {
   void update(State& state, const MaterialStep& step) const;
   double wave_speed(const State& state, double density_ratio) const;
   double reference_density() const { return p_.density_kg_m3; }
+  // The elastic moduli: they bound the elastic-plastic tangent, which keeps the NSNI term stabilising.
+  Moduli moduli(const State&) const { return {p_.bulk_modulus_Pa, p_.shear_modulus_Pa}; }
   double dissipated_energy(const State& state) const { return state.plastic_work; }
   double yield_stress(double plastic_strain) const {
     return p_.yield_stress_Pa + p_.hardening_modulus_Pa * plastic_strain;

@@ -18,6 +18,13 @@ struct MaterialStep {
   double spacing_m = 0.0;                // the particle's nodal spacing h_I (length-scale-aware laws)
 };
 
+// Isotropic moduli a law reports for the solver (the NSNI stabilization stress gradient, see
+// macro/README.md): the tangent (or a bound of it) at the particle's state.
+struct Moduli {
+  double bulk_Pa = 0.0;
+  double shear_Pa = 0.0;
+};
+
 inline double pressure_of(const Mat3& stress) { return -stress.trace() / 3.0; }  // > 0 in compression
 
 inline Mat3 deviator(const Mat3& m) { return m - (m.trace() / 3.0) * Mat3::Identity(); }

@@ -1,0 +1,27 @@
+#pragma once
+// Artificial bulk viscosity (von Neumann-Richtmyer quadratic + Landshoff linear term, the form and
+// defaults of LS-DYNA's *CONTROL_BULK_VISCOSITY), acting in compression only:
+//   q = rho h (c_quadratic h tr(D)^2 - c_linear c tr(D))   if tr(D) < 0,   q = 0 otherwise,
+// added to the pressure in the internal force (sigma - q I). It spreads a shock over a few spacings
+// instead of letting it ring; the energy it takes, -q tr(D) V dt >= 0, is booked as dissipated.
+// The stable step shrinks accordingly: dt = h / (Q + sqrt(Q^2 + c^2)), Q = c_linear c + c_quadratic h |tr D|.
+#include <cmath>
+
+namespace uhpc::macro {
+
+struct BulkViscosity {
+  double c_linear = 0.06;
+  double c_quadratic = 1.5;
+
+  double pressure(double density, double h, double c, double trace_d) const {
+    if (!(trace_d < 0.0)) return 0.0;
+    return density * h * (c_quadratic * h * trace_d * trace_d - c_linear * c * trace_d);
+  }
+  // The critical step of a particle of size h and wave speed c under this viscosity.
+  double critical_step(double h, double c, double trace_d) const {
+    const double Q = trace_d < 0.0 ? c_linear * c + c_quadratic * h * std::fabs(trace_d) : 0.0;
+    return h / (Q + std::sqrt(Q * Q + c * c));
+  }
+};
+
+}  // namespace uhpc::macro

@@ -1,0 +1,28 @@
+#pragma once
+// Energy and momentum accounts of a run, updated every step.
+//   kinetic      sum 1/2 m v^2 at the end of the step
+//   internal     integral of the stress power sum V sigma : D dt (stored elastic + material dissipation)
+//   material_dissipated   part of `internal` the laws report as dissipated (plastic work, damage)
+//   viscous      work of the artificial bulk viscosity (dissipated)
+//   external     work of the external forces (walls, reactions of prescribed velocities)
+// Balance: kinetic + internal + viscous - external = initial kinetic (+ initial internal, zero here).
+#include <array>
+
+namespace uhpc::macro {
+
+struct EnergyLedger {
+  double kinetic = 0.0;
+  double kinetic_initial = 0.0;
+  double internal = 0.0;
+  double stabilization = 0.0;  // NSNI part of `internal`
+  double material_dissipated = 0.0;
+  double viscous = 0.0;
+  double external = 0.0;
+  std::array<double, 3> momentum{};
+  std::array<double, 3> momentum_initial{};
+  std::array<double, 3> external_impulse{};
+
+  double balance_error() const { return kinetic + internal + viscous - external - kinetic_initial; }
+};
+
+}  // namespace uhpc::macro

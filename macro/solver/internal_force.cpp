@@ -1,0 +1,78 @@
+#include "solver/internal_force.hpp"
+#include "solver/parallel.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace uhpc::macro {
+
+void InternalForce::compute(const ShapeCache& shapes, const double* stress, const double* bulk_q,
+                            const double* volume, std::size_t n, double* f, const double* stress_grad) {
+  const bool nsni = stress_grad != nullptr && shapes.has_second_gradients();
+  const std::int64_t nn = static_cast<std::int64_t>(n);
+#pragma omp parallel if (nn >= kParallelMinParticles)
+  {
+#ifdef _OPENMP
+    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+#else
+    const int threads = 1, t = 0;
+#endif
+#pragma omp single
+    {
+      if (buffers_.size() < static_cast<std::size_t>(threads)) buffers_.resize(threads);
+      for (auto& b : buffers_)
+        if (b.size() < 3 * n) b.resize(3 * n);
+    }
+    double* buf = buffers_[t].data();
+    std::fill(buf, buf + 3 * n, 0.0);
+#pragma omp for schedule(static)
+    for (std::int64_t L = 0; L < nn; ++L) {
+      double s[9];
+      const double q = bulk_q ? bulk_q[L] : 0.0;
+      for (int m = 0; m < 9; ++m) s[m] = volume[L] * stress[9 * L + m];
+      for (int d = 0; d < 3; ++d) s[4 * d] -= volume[L] * q;
+      const std::int32_t* row = shapes.support.row(L);
+      const std::int64_t b = shapes.support.begin(L), count = shapes.support.count(L);
+      for (std::int64_t k = 0; k < count; ++k) {
+        const double* dpsi = shapes.grad.data() + 3 * (b + k);
+        double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
+        for (int r = 0; r < 3; ++r) fi[r] -= s[3 * r] * dpsi[0] + s[3 * r + 1] * dpsi[1] + s[3 * r + 2] * dpsi[2];
+      }
+      if (nsni) {
+        // tg[j][m] = M_L * sum over the pairs (d, k) with sym_index m of dsigma_jk/dx_d: Psi^(dk) is
+        // symmetric in (d, k), so the off-diagonal pairs add up.
+        const double moment = std::cbrt(volume[L] * volume[L] * volume[L] * volume[L] * volume[L]) / 12.0;
+        const double* sg = stress_grad + 27 * L;
+        double tg[3][6];
+        for (int j = 0; j < 3; ++j) {
+          for (int m = 0; m < 6; ++m) tg[j][m] = 0.0;
+          for (int d = 0; d < 3; ++d)
+            for (int c = 0; c < 3; ++c) tg[j][sym_index(d, c)] += moment * sg[9 * d + 3 * j + c];
+        }
+        for (std::int64_t k = 0; k < count; ++k) {
+          const double* h2 = shapes.hess.data() + 6 * (b + k);
+          double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
+          for (int j = 0; j < 3; ++j) {
+            double sum = 0.0;
+            for (int m = 0; m < 6; ++m) sum += tg[j][m] * h2[m];
+            fi[j] -= sum;
+          }
+        }
+      }
+    }
+    // The implicit barrier of the loop above: every buffer is complete before the sum.
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < 3 * nn; ++i) {
+      double sum = 0.0;
+      for (int u = 0; u < threads; ++u) sum += buffers_[u][i];
+      f[i] = sum;
+    }
+  }
+}
+
+}  // namespace uhpc::macro

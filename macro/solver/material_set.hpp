@@ -1,0 +1,35 @@
+#pragma once
+// The material of a body: one law and the per-particle states it owns, held in a std::variant so the
+// solver visits it once per particle loop and the loop body is a direct (inlinable) call, never a
+// virtual one. A new law (the AFC concrete model) is one more alternative here; it needs the members
+// every law has: State with a `stress` (Mat3), update(State&, MaterialStep), wave_speed(State,
+// density_ratio), reference_density() and dissipated_energy(State).
+#include <cstddef>
+#include <variant>
+#include <vector>
+
+#include "materials/elastic.hpp"
+#include "materials/j2_plasticity.hpp"
+
+namespace uhpc::macro {
+
+template <class Law>
+struct MaterialBlock {
+  Law law;
+  std::vector<typename Law::State> state;  // one per particle
+
+  MaterialBlock(const Law& l, std::size_t n) : law(l), state(n) {}
+};
+
+using MaterialSet = std::variant<MaterialBlock<ElasticMaterial>, MaterialBlock<J2Material>>;
+
+template <class Law>
+MaterialSet make_material_set(const Law& law, std::size_t n) {
+  return MaterialSet(std::in_place_type<MaterialBlock<Law>>, law, n);
+}
+
+inline double reference_density(const MaterialSet& set) {
+  return std::visit([](const auto& b) { return b.law.reference_density(); }, set);
+}
+
+}  // namespace uhpc::macro

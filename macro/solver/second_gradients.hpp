@@ -1,0 +1,41 @@
+#pragma once
+// Implicit second derivatives of RK shape functions, for the NSNI strain gradients (PHYSICS.md
+// section 5). With the quadratic basis H(y), y = (x - x_J)/h, shifted to x and scaled by h,
+//   Psi^(ij)_J(x) = H^T(y_J) b^(ij) w_J,   M b^(ij) = r^(ij),
+// where r^(ij) holds the second derivatives of the monomials at x: (delta_ai delta_bj + delta_aj
+// delta_bi) / h^2 for y_a y_b, zero for 1 and y_a. Then sum_J Psi^(ij)_J p(x_J) = d2p/dx_i dx_j for
+// every quadratic p: in particular sum_J Psi^(ij)_J = 0 and sum_J Psi^(ij)_J x_J = 0 (a stabilization
+// force built on them conserves linear and angular momentum). No kernel derivative is needed.
+// The linear part [1, y] is eliminated first (its moment block is the well-conditioned linear RK
+// one): with M = [[Mpp, Mpq], [Mqp, Mqq]], the quadratic coefficients solve S c = r_q with
+// S = Mqq - Mqp Mpp^-1 Mpq, and the linear ones follow from sum_J Psi^(ij)_J [1, x_J] = 0, which
+// therefore holds to round-off whatever S is. Where S is ill conditioned (edges and corners see too
+// few particles for a quadratic fit within two spacings) its small eigenvalues are lifted to
+// `regularization` times the largest (the quasi-linear treatment of rk_shape, applied to the
+// quadratic block): the second derivatives of quadratics are then only approximated there, but
+// those of constant and linear fields stay exactly zero, so rigid motions never load the NSNI term.
+#include <cstdint>
+
+#include "uhpc/kernels.hpp"
+
+namespace uhpc::macro {
+
+struct SecondGradientOptions {
+  KernelType kernel = KernelType::CubicBSpline;
+  double rcond_min = 1e-4;       // below this reciprocal condition number of S: regularise
+  double regularization = 1e-2;  // floor of the lifted eigenvalues, relative to the largest
+};
+
+enum class SecondGradientPath : std::uint8_t { Full = 0, Regularized = 1, Empty = 2 };
+
+// For the nodes nbr[0..n) of point x (node k at nodes[3 nbr[k]], support radius support[nbr[k]]):
+// hess[6k + m] = Psi^(m)_k with m = xx, yy, zz, yz, xz, xy. Allocation-free.
+SecondGradientPath second_gradients(const SecondGradientOptions& options, const double* x, const double* nodes,
+                                    const double* support, const std::int32_t* nbr, int n, double* hess);
+
+// Index of the symmetric pair (i, j) in the 6-vector above.
+constexpr int sym_index(int i, int j) {
+  return i == j ? i : (i + j == 3 ? 3 : (i + j == 2 ? 4 : 5));  // (1,2)->3, (0,2)->4, (0,1)->5
+}
+
+}  // namespace uhpc::macro

@@ -1,0 +1,33 @@
+#pragma once
+// RK shape-function gradients of every particle at every particle, rebuilt in a given configuration
+// (semi-Lagrangian: the current one), reusing all memory between steps. common's build_shape_table
+// returns a fresh table each call; this keeps the lists, the values and the search workspace, so once
+// the neighbour counts have settled a rebuild allocates nothing.
+#include <cstddef>
+#include <vector>
+
+#include "solver/second_gradients.hpp"
+#include "uhpc/neighbour_search.hpp"
+#include "uhpc/rk_shape.hpp"
+
+namespace uhpc::macro {
+
+struct ShapeCache {
+  NeighbourList support;           // support.row(L): the particles J whose support covers x_L
+  std::vector<double> psi;         // Psi_J(x_L), one per entry
+  std::vector<double> grad;        // grad Psi_J(x_L), 3 per entry
+  std::vector<rk::PointResult> info;
+  std::vector<double> hess;                      // NSNI: Psi^(ij)_J(x_L), 6 per entry (second_gradients.hpp)
+  std::vector<SecondGradientPath> hess_path;     // one per point
+  NeighbourWorkspace<3> workspace;
+
+  // Rebuilds at the n points `x` (3n), which are also the nodes, with support radii `support`; with
+  // `second` also the implicit second derivatives on the same lists.
+  void rebuild(const rk::Options& options, const double* x, const double* support, std::size_t n,
+               const SecondGradientOptions* second = nullptr);
+  std::size_t count(rk::Path path) const;
+  std::size_t count(SecondGradientPath path) const;
+  bool has_second_gradients() const { return !hess.empty(); }
+};
+
+}  // namespace uhpc::macro

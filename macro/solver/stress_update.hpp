@@ -1,0 +1,98 @@
+#pragma once
+// The per-particle constitutive update of one step, generic over the law (instantiated once per
+// alternative of MaterialSet, so the loop body calls the law directly):
+//   D = sym L, W = skew L (from the velocity gradient at the mid-step configuration);
+//   objective rotation split symmetrically around the law: sigma <- R sigma R^T, law update with
+//   D dt, sigma <- R sigma R^T, where R = (I - W dt/4)^-1 (I + W dt/4) is the Cayley (Hughes-Winget)
+//   rotation over half the step. R is exactly orthogonal and R(-W) = R(W)^T, so the update is
+//   objective to second order and a step run backwards (L -> -L) undoes it to round-off;
+//   V <- V exp(tr D dt) (exactly reversible too), rho = m / V;
+//   bulk viscosity q and the particle's critical step from the new wave speed.
+// NSNI (when Particles::stress_grad is sized): each direction's stabilization stress gradient is
+// rotated the same way and advanced with the law's isotropic moduli, dsigma_,d = C : sym(L_,d) dt, its
+// power M sigma_,d : D_,d V-weighted like the stress power (M = V^(5/3) / 12).
+// Stress power is integrated with the trapezoid rule in the co-rotated frame, 0.5 (s_a + s_b) : D dt V_mid,
+// which is exact for a linear law: the internal energy of an elastic body is then its strain energy.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <Eigen/Dense>
+
+#include "materials/material_step.hpp"
+#include "solver/parallel.hpp"
+#include "solver/bulk_viscosity.hpp"
+#include "solver/particles.hpp"
+
+namespace uhpc::macro {
+
+struct StressUpdateSums {
+  double stress_work = 0.0;   // J, this step
+  double viscous_work = 0.0;  // J, this step (>= 0)
+  double stabilization_work = 0.0;  // J, this step (NSNI; part of the internal energy)
+  double min_critical_step = std::numeric_limits<double>::infinity();  // s, before the CFL factor
+  std::int64_t inverted = -1;  // a particle whose volume became non-positive or non-finite, else -1
+};
+
+template <class Block>
+StressUpdateSums update_stresses(Block& block, Particles& p, double dt, const BulkViscosity& viscosity) {
+  const std::int64_t n = static_cast<std::int64_t>(p.n);
+  double work = 0.0, visc = 0.0, stab = 0.0, dt_min = std::numeric_limits<double>::infinity();
+  std::int64_t inverted = -1;
+  const bool nsni = !p.stress_grad.empty();
+#pragma omp parallel for schedule(static) reduction(+ : work, visc, stab) reduction(min : dt_min) reduction(max : inverted) if (n >= kParallelMinParticles)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> L(p.vel_grad.data() + 9 * i);
+    const Mat3 D = 0.5 * (L + L.transpose());
+    const Mat3 W = 0.5 * (L - L.transpose());
+    const Mat3 I = Mat3::Identity();
+    const Mat3 R = (I - 0.25 * dt * W).inverse() * (I + 0.25 * dt * W);
+    const double trD = D.trace();
+
+    const double v_old = p.volume[i];
+    const double v_new = v_old * std::exp(trD * dt);
+    const double v_mid = v_old * std::exp(0.5 * trD * dt);
+    if (!(v_new > 0.0) || !std::isfinite(v_new)) inverted = std::max(inverted, i);
+
+    auto& state = block.state[static_cast<std::size_t>(i)];
+    const Mat3 s_a = R * state.stress * R.transpose();
+    state.stress = s_a;
+    MaterialStep step;
+    step.strain_increment = D * dt;
+    step.dt_s = dt;
+    step.density_ratio = p.volume0[i] / v_new;
+    step.spacing_m = p.spacing[i];
+    block.law.update(state, step);
+    work += 0.5 * (s_a + state.stress).cwiseProduct(D).sum() * dt * v_mid;
+    state.stress = R * state.stress * R.transpose();
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.stress.data() + 9 * i) = state.stress;
+    if (nsni) {
+      const Moduli mod = block.law.moduli(state);
+      const double lambda = mod.bulk_Pa - 2.0 / 3.0 * mod.shear_Pa;
+      const double moment = std::cbrt(v_mid * v_mid * v_mid * v_mid * v_mid) / 12.0;
+      for (int d = 0; d < 3; ++d) {
+        const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> G(p.vel_grad_grad.data() + 27 * i + 9 * d);
+        Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> sg(p.stress_grad.data() + 27 * i + 9 * d);
+        const Mat3 Dd = 0.5 * (G + G.transpose());
+        const Mat3 g_a = R * sg * R.transpose();
+        const Mat3 g_b = g_a + (lambda * Dd.trace() * I + 2.0 * mod.shear_Pa * Dd) * dt;
+        stab += moment * 0.5 * (g_a + g_b).cwiseProduct(Dd).sum() * dt;
+        sg = R * g_b * R.transpose();
+      }
+    }
+
+    p.volume[i] = v_new;
+    p.density[i] = p.mass[i] / v_new;
+    const double c = block.law.wave_speed(state, step.density_ratio);
+    p.wave_speed[i] = c;
+    const double h = std::cbrt(v_new);
+    const double q = viscosity.pressure(p.density[i], h, c, trD);
+    p.bulk_q[i] = q;
+    visc += -q * trD * dt * v_mid;
+    dt_min = std::min(dt_min, viscosity.critical_step(h, c, trD));
+  }
+  return {work, visc, stab, dt_min, inverted};
+}
+
+}  // namespace uhpc::macro

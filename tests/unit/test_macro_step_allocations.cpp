@@ -1,0 +1,46 @@
+// The step loop of the macro solver allocates nothing once the neighbour counts have settled: every
+// buffer (neighbour lists, search workspace, shape tables, per-thread force buffers) keeps its memory.
+// Counted through the global operator new of this test program.
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include <gtest/gtest.h>
+
+#include "bodies/generators.hpp"
+#include "solver/explicit_solver.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}
+
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace uhpc::macro {
+namespace {
+
+TEST(MacroStepAllocations, NoAllocationInsideTheStepLoop) {
+  const ParticleBody body = box_body(0.05, 0.04, 0.03, 0.005);
+  SolverOptions options;
+  ExplicitSolver solver(Particles::from_body(body, 2500.0, options.support_factor),
+                        make_material_set(ElasticMaterial(ElasticParams{2500.0, 20e9, 15e9}), body.size()), options);
+  set_initial_velocity(solver.particles(), [](const double* x) -> Vec3 { return {50.0 * x[1], -30.0 * x[2], 5.0}; });
+  Wall wall;
+  wall.point = {0.0, 0.0, -0.0001};
+  wall.normal = {0, 0, 1};
+  solver.add_wall(wall);
+  solver.initialize();
+  for (int s = 0; s < 5; ++s) ASSERT_TRUE(solver.step());  // capacities settle
+  const long before = g_allocations.load();
+  for (int s = 0; s < 50; ++s) ASSERT_TRUE(solver.step());
+  EXPECT_EQ(g_allocations.load() - before, 0);
+}
+
+}  // namespace
+}  // namespace uhpc::macro
