@@ -8,3 +8,7 @@ uhpc_add_test(verification verification/test_macro_conservation.cpp uhpc_macro_s
 uhpc_add_test(verification verification/test_macro_zero_modes.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_second_gradients.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_step_allocations.cpp uhpc_macro_solver)
+uhpc_add_test(unit unit/test_macro_afc.cpp uhpc_macro_materials)
+uhpc_add_test(unit unit/test_macro_afc_config.cpp uhpc_macro_materials)
+uhpc_add_test(verification verification/test_macro_afc_check_values.cpp uhpc_macro_materials)
+uhpc_add_test(unit unit/test_macro_afc_allocations.cpp uhpc_macro_materials)

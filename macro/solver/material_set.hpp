@@ -8,6 +8,7 @@
 #include <variant>
 #include <vector>
 
+#include "materials/afc.hpp"
 #include "materials/elastic.hpp"
 #include "materials/j2_plasticity.hpp"
 
@@ -21,7 +22,8 @@ struct MaterialBlock {
   MaterialBlock(const Law& l, std::size_t n) : law(l), state(n) {}
 };
 
-using MaterialSet = std::variant<MaterialBlock<ElasticMaterial>, MaterialBlock<J2Material>>;
+using MaterialSet =
+    std::variant<MaterialBlock<ElasticMaterial>, MaterialBlock<J2Material>, MaterialBlock<AfcMaterial>>;
 
 template <class Law>
 MaterialSet make_material_set(const Law& law, std::size_t n) {

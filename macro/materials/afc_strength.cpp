@@ -1,0 +1,42 @@
+#include "materials/afc_strength.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace uhpc::macro {
+
+double effective_deviatoric_rate(const Mat3& strain_increment, double dt_s) {
+  if (!(dt_s > 0.0)) return 0.0;
+  const Mat3 e = deviator(strain_increment);
+  return std::sqrt(2.0 / 3.0 * e.cwiseProduct(e).sum()) / dt_s;
+}
+
+double afc_rate_factor(double strain_rate_1_s, const AfcParams& p) {
+  // A zero rate would give ln 0 = -inf; the smallest positive double keeps the raw law finite (and
+  // the floor then decides).
+  const double rate_n = std::max(strain_rate_1_s / p.reference_strain_rate_1_s, std::numeric_limits<double>::min());
+  return std::max(1.0 + p.C3 * std::log(rate_n), p.options.rate_factor_floor);
+}
+
+namespace {
+double cap(double s, const AfcParams& p) { return p.options.cap_strength_with_c5 ? std::min(s, p.C5_Pa) : s; }
+}  // namespace
+
+double afc_strength_compression(double P, double d_minus, double F, const AfcParams& p) {
+  const double s = p.C1_Pa - (p.C2_Pa + (p.C1_Pa - p.C2_Pa) * d_minus) * std::exp(-p.An_1_Pa * P) + p.C4 * P;
+  return std::max(F * cap(s, p), 0.0);
+}
+
+double afc_strength_tension(double P, double d_minus, double d_plus, double F, const AfcParams& p) {
+  const double T = p.Tmax_Pa * (1.0 - d_plus);
+  if (!(T > 1e-12 * p.Tmax_Pa)) return 0.0;  // fully cracked: no strength in tension (the 0/0 guard)
+  const double ratio = std::clamp((T + P) / T, 0.0, 1.0);
+  return std::max(F * cap((p.C1_Pa - p.C2_Pa) * (1.0 - d_minus), p) * ratio, 0.0);
+}
+
+double afc_strength(double P, double d_minus, double d_plus, double F, const AfcParams& p) {
+  return P >= 0.0 ? afc_strength_compression(P, d_minus, F, p) : afc_strength_tension(P, d_minus, d_plus, F, p);
+}
+
+}  // namespace uhpc::macro

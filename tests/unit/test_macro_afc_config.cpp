@@ -1,0 +1,78 @@
+// Building the AFC law from the shipped files, and the input errors (file, key, reason) for bad ones.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "materials/afc.hpp"
+#include "materials/afc_config.hpp"
+#include "test_support.hpp"
+#include "uhpc/errors.hpp"
+
+namespace uhpc::macro {
+namespace {
+
+const std::string kAfc = UHPC_DATA_DIR "/afc_uhpc.json";
+const std::string kSdel = UHPC_DATA_DIR "/sdel_paper.json";
+
+std::string error_with(const std::vector<std::string>& overrides) {
+  return uhpc::test::error_of<uhpc::InputError>([&] { load_afc_params(kAfc, kSdel, overrides); });
+}
+
+TEST(AfcConfig, ShippedFilesGiveTable6AndTheHandoff) {
+  const AfcParams p = load_afc_params(kAfc, kSdel);
+  EXPECT_EQ(p.density_kg_m3, 2555.7);
+  EXPECT_EQ(p.C1_Pa, 9.578e8);
+  EXPECT_EQ(p.C9, 0.10094);
+  EXPECT_EQ(p.Tmax_Pa, 6.89e6);
+  EXPECT_EQ(p.reference_strain_rate_1_s, 1e-4);
+  EXPECT_EQ(p.sdel.chi, 4.1e6);
+  EXPECT_EQ(p.l_mac_m, 0.4064);
+  EXPECT_EQ(p.strain_measure, TensileStrainMeasure::Mazars);
+  // The defaults of every option.
+  EXPECT_EQ(p.options.rate_factor_floor, 1.0);
+  EXPECT_FALSE(p.options.cap_strength_with_c5);
+  EXPECT_EQ(p.options.damage_eps_min, 0.01);
+  EXPECT_FALSE(p.options.degrade_tensile_stress);
+  EXPECT_FALSE(p.options.sdel_zero_anchored);
+  EXPECT_EQ(p.options.tensile_damage, TensileDamage::Sdel);
+  EXPECT_FALSE(p.options.wave_speed_from_unloading_modulus);
+  EXPECT_NO_THROW(AfcMaterial{p});
+}
+
+TEST(AfcConfig, OptionsBlockIsRead) {
+  const AfcParams p = load_afc_params(
+      kAfc, kSdel,
+      {"options.rate_factor_floor=0", "options.cap_strength_with_c5=true", "options.damage_eps_min=0.02",
+       "options.degrade_tensile_stress=true", "options.sdel_zero_anchored=true", "options.tensile_damage=off",
+       "options.wave_speed_from_unloading_modulus=true"});
+  EXPECT_EQ(p.options.rate_factor_floor, 0.0);
+  EXPECT_TRUE(p.options.cap_strength_with_c5);
+  EXPECT_EQ(p.options.damage_eps_min, 0.02);
+  EXPECT_TRUE(p.options.degrade_tensile_stress);
+  EXPECT_TRUE(p.options.sdel_zero_anchored);
+  EXPECT_EQ(p.options.tensile_damage, TensileDamage::Off);
+  EXPECT_TRUE(p.options.wave_speed_from_unloading_modulus);
+}
+
+TEST(AfcConfig, BadInputNamesFileKeyAndReason) {
+  EXPECT_EQ(error_with({"C7=-1"}), kAfc + ": key 'C7': value -1 is out of range, must be in (0, 1)");
+  EXPECT_EQ(error_with({"C10_Pa=1"}).rfind(kAfc + ": key 'C10_Pa': unknown key", 0), 0u);
+  EXPECT_EQ(error_with({"options.tensile_damage=maybe"}),
+            kAfc + ": key 'options.tensile_damage': value 'maybe' is not one of: sdel, off");
+  EXPECT_EQ(error_with({"options.typo=1"}).rfind(kAfc + ": key 'options.typo': unknown key", 0), 0u);
+  EXPECT_EQ(error_with({"C2_Pa=1e9"}), kAfc + ": key 'C2_Pa': value 1000000000 must be < C1_Pa = 957800000");
+  EXPECT_EQ(error_with({"C9=0.005"}), kAfc + ": key 'C9': value 0.005 must be > C7 = 0.00781");
+  EXPECT_NE(error_with({"C8_Pa=1e10"}).find("key 'C8_Pa': value 1e+10 must be >= K_e"), std::string::npos);
+  EXPECT_NE(error_with({"K2_Pa=-2e11"}).find("key 'K2_Pa': AfcMaterial: the crushing curve"), std::string::npos);
+  EXPECT_EQ(error_with({"Tmax_Pa=\"high\""}), kAfc + ": key 'Tmax_Pa': expected a number, got a string");
+  // A missing key and a bad handoff.
+  EXPECT_NE(uhpc::test::error_of<uhpc::InputError>([] { load_afc_params(kAfc, "/nonexistent/sdel.json"); }), "");
+  const std::string missing = uhpc::test::error_of<uhpc::InputError>([] {
+    const uhpc::Config cfg = uhpc::Config::from_json(nlohmann::json{{"density_kg_m3", 2500.0}}, "mem.json");
+    afc_params_from_config(cfg, uhpc::read_sdel_handoff(kSdel));
+  });
+  EXPECT_EQ(missing, "mem.json: key 'shear_modulus_Pa': required key is missing");
+}
+
+}  // namespace
+}  // namespace uhpc::macro
