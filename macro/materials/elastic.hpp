@@ -1,5 +1,8 @@
 #pragma once
 // Linear (hypo)elastic material: sigma += K tr(de) I + 2 G dev(de) in the co-rotated frame.
+#include <string>
+#include <vector>
+
 #include "materials/material_step.hpp"
 
 namespace uhpc::macro {
@@ -27,6 +30,9 @@ class ElasticMaterial {
   // Energy dissipated per unit reference volume so far (none for an elastic law).
   double dissipated_energy(const State&) const { return 0.0; }
   const ElasticParams& params() const { return p_; }
+  // Per-particle output fields beyond the solver's (stress, pressure, ...): none for this law.
+  static std::vector<std::string> output_fields() { return {}; }
+  void output_values(const State&, double*) const {}
 
  private:
   ElasticParams p_;

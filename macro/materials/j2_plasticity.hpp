@@ -2,6 +2,9 @@
 // J2 (von Mises) plasticity with linear isotropic hardening, for verification on classical metal
 // impact problems: elastic predictor, radial return of the deviatoric trial stress at fixed pressure,
 // sigma_y(eps_p) = yield_stress + hardening_modulus * eps_p.
+#include <string>
+#include <vector>
+
 #include "materials/material_step.hpp"
 
 namespace uhpc::macro {
@@ -35,6 +38,9 @@ class J2Material {
     return p_.yield_stress_Pa + p_.hardening_modulus_Pa * plastic_strain;
   }
   const J2Params& params() const { return p_; }
+  // Per-particle output fields beyond the solver's: output_values writes one value per name, in order.
+  static std::vector<std::string> output_fields() { return {"plastic_strain"}; }
+  void output_values(const State& state, double* out) const { out[0] = state.plastic_strain; }
 
  private:
   J2Params p_;

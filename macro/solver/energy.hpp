@@ -5,7 +5,13 @@
 //   material_dissipated   part of `internal` the laws report as dissipated (plastic work, damage)
 //   viscous      work of the artificial bulk viscosity (dissipated)
 //   external     work of the external forces (walls, reactions of prescribed velocities)
-// Balance: kinetic + internal + viscous - external = initial kinetic (+ initial internal, zero here).
+//   contact      energy taken by the sphere contact: minus the work of the contact forces on the
+//                particles and the sphere (trapezoid over each step); the penalty is conservative, so
+//                this is the energy held in the penalty springs up to the integrator's error
+//   contact_stored  sum 1/2 k delta^2 at the end of the step (the exact potential, for comparison)
+// kinetic and momentum include the rigid sphere (kinetic_sphere, momentum_sphere are its parts).
+// Balance: kinetic + internal + viscous + contact - external = initial kinetic (+ initial internal,
+// zero here).
 #include <array>
 
 namespace uhpc::macro {
@@ -18,11 +24,15 @@ struct EnergyLedger {
   double material_dissipated = 0.0;
   double viscous = 0.0;
   double external = 0.0;
+  double contact = 0.0;
+  double contact_stored = 0.0;
+  double kinetic_sphere = 0.0;
+  std::array<double, 3> momentum_sphere{};
   std::array<double, 3> momentum{};
   std::array<double, 3> momentum_initial{};
   std::array<double, 3> external_impulse{};
 
-  double balance_error() const { return kinetic + internal + viscous - external - kinetic_initial; }
+  double balance_error() const { return kinetic + internal + viscous + contact - external - kinetic_initial; }
 };
 
 }  // namespace uhpc::macro

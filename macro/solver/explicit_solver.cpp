@@ -19,11 +19,24 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
   if (!(options_.support_factor > 1)) throw std::invalid_argument("ExplicitSolver: support_factor must be > 1");
   if (options_.viscosity.c_linear < 0 || options_.viscosity.c_quadratic < 0)
     throw std::invalid_argument("ExplicitSolver: bulk viscosity coefficients must be >= 0");
+  if (!(options_.dt_collapse_fraction >= 0 && options_.dt_collapse_fraction < 1))
+    throw std::invalid_argument("ExplicitSolver: dt_collapse_fraction must be in [0, 1)");
+  if (options_.max_step_repeats < 0) throw std::invalid_argument("ExplicitSolver: max_step_repeats must be >= 0");
+  if (!(options_.domain_margin > 0)) throw std::invalid_argument("ExplicitSolver: domain_margin must be > 0");
   f_ext_old_.assign(3 * p_.n, 0.0);
+  f_contact_old_.assign(3 * p_.n, 0.0);
+  if (p_.f_contact.size() != 3 * p_.n) p_.f_contact.assign(3 * p_.n, 0.0);
   if (options_.stabilization == Stabilization::Nsni) {
     p_.stress_grad.assign(27 * p_.n, 0.0);
     p_.vel_grad_grad.assign(27 * p_.n, 0.0);
   }
+}
+
+void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
+  if (initialized_) throw std::logic_error("ExplicitSolver::set_sphere: call before initialize()");
+  sphere.validate();
+  sphere_ = sphere;
+  sphere_->x_prev = sphere_->x;
 }
 
 const SecondGradientOptions* ExplicitSolver::second_options() const {
@@ -43,14 +56,46 @@ void ExplicitSolver::initialize() {
         dt_ = options_.cfl * dt_min;
       },
       material_);
+  if (sphere_) {
+    sphere_contact_stiffness(p_, sphere_->contact, contact_k_);
+    min_contact_radius_ = HUGE_VAL;
+    for (std::size_t i = 0; i < p_.n; ++i)
+      min_contact_radius_ = std::min(min_contact_radius_, sphere_->contact.contact_radius_factor * p_.spacing[i]);
+  }
+  domain_ = options_.domain ? *options_.domain : default_domain();
   constrain_velocities();
   p_.x_prev = p_.x;
   shapes_.rebuild(options_.rk, p_.x.data(), p_.support.data(), p_.n, second_options());
   compute_forces();
+  if (sphere_) dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
   f_ext_old_ = p_.f_ext;
+  f_contact_old_ = p_.f_contact;
+  if (sphere_) sphere_force_old_ = sphere_->force;
   update_momentum_and_kinetic();
   ledger_.kinetic_initial = ledger_.kinetic;
   ledger_.momentum_initial = ledger_.momentum;
+  ledger_.contact_stored = contact_.stored_energy;
+  save_state();  // sizes the saved copy once, so the step loop only copies
+  initialized_ = true;
+}
+
+Region ExplicitSolver::default_domain() const {
+  Region box{{HUGE_VAL, HUGE_VAL, HUGE_VAL}, {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}};
+  auto grow = [&](const double* x, double r) {
+    for (int d = 0; d < 3; ++d) {
+      box.lo[d] = std::min(box.lo[d], x[d] - r);
+      box.hi[d] = std::max(box.hi[d], x[d] + r);
+    }
+  };
+  for (std::size_t i = 0; i < p_.n; ++i) grow(p_.x.data() + 3 * i, 0.5 * p_.spacing[i]);
+  if (sphere_) grow(sphere_->x.data(), sphere_->radius_m);
+  double extent = 0.0;
+  for (int d = 0; d < 3; ++d) extent = std::max(extent, box.hi[d] - box.lo[d]);
+  for (int d = 0; d < 3; ++d) {
+    box.lo[d] -= options_.domain_margin * extent;
+    box.hi[d] += options_.domain_margin * extent;
+  }
+  return box;
 }
 
 void ExplicitSolver::constrain_velocities() {
@@ -61,6 +106,16 @@ void ExplicitSolver::constrain_velocities() {
 
 void ExplicitSolver::compute_accelerations(double dt) {
   const std::int64_t n = static_cast<std::int64_t>(p_.n);
+  if (sphere_) {  // the sphere drifts where the particles drift (velocity_verlet_step, before this call)
+    RigidSphere& s = *sphere_;
+    for (int d = 0; d < 3; ++d) {
+      s.x_prev[d] = s.x[d];
+      s.x[d] += dt * s.v[d];
+    }
+  }
+  // A position that is not finite or outside the domain fails the step (attempt() names it); stop
+  // here, before the neighbour search meets it.
+  if (first_non_finite(p_) >= 0 || first_outside(p_, domain_) >= 0) return;
   const double* x_strain = p_.x.data();
   if (options_.strain_configuration == StrainConfiguration::Midpoint) {
 #pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
@@ -77,11 +132,26 @@ void ExplicitSolver::compute_accelerations(double dt) {
   ledger_.stabilization += sums.stabilization_work;
   ledger_.viscous += sums.viscous_work;
   dt_ = options_.cfl * sums.min_critical_step;
-  if (sums.inverted >= 0) failure_ = sums.inverted;
+  if (sums.inverted >= 0) inverted_ = sums.inverted;
 
   if (options_.strain_configuration == StrainConfiguration::Midpoint)
     shapes_.rebuild(options_.rk, p_.x.data(), p_.support.data(), p_.n, second_options());
   compute_forces();
+  if (sphere_) {
+    dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
+    // Work of the contact pair forces over the step (trapezoid), on the particles and on the sphere;
+    // the energy the contact takes is its negative.
+    double work = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : work) if (n >= kParallelMinParticles)
+    for (std::int64_t i = 0; i < 3 * n; ++i)
+      work += 0.5 * (f_contact_old_[i] + p_.f_contact[i]) * (p_.x[i] - p_.x_prev[i]);
+    for (int d = 0; d < 3; ++d)
+      work += 0.5 * (sphere_force_old_[d] + sphere_->force[d]) * (sphere_->x[d] - sphere_->x_prev[d]);
+    ledger_.contact -= work;
+    ledger_.contact_stored = contact_.stored_energy;
+    std::copy(p_.f_contact.begin(), p_.f_contact.end(), f_contact_old_.begin());
+    sphere_force_old_ = sphere_->force;
+  }
 
   // External work and impulse by the trapezoid rule over the step.
   double work = 0.0, ix = 0.0, iy = 0.0, iz = 0.0;
@@ -122,6 +192,10 @@ void ExplicitSolver::compute_forces() {
     }
   }
   wall_force_ = wall_total;
+  if (sphere_) {
+    contact_ = sphere_contact_forces(*sphere_, p_, contact_k_.data(), min_contact_radius_, p_.f_contact.data());
+    sphere_->force = contact_.force_on_sphere;
+  }
   // Prescribed velocities: the reaction cancels every other force (constant velocity, a = 0), so the
   // external force on such a particle is -f_int.
   for (const PrescribedVelocity& bc : prescribed_)
@@ -129,7 +203,8 @@ void ExplicitSolver::compute_forces() {
       for (int d = 0; d < 3; ++d) p_.f_ext[3 * static_cast<std::size_t>(j) + d] = -p_.f_int[3 * static_cast<std::size_t>(j) + d];
 #pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
   for (std::int64_t i = 0; i < n; ++i)
-    for (int d = 0; d < 3; ++d) p_.a[3 * i + d] = (p_.f_int[3 * i + d] + p_.f_ext[3 * i + d]) / p_.mass[i];
+    for (int d = 0; d < 3; ++d)
+      p_.a[3 * i + d] = (p_.f_int[3 * i + d] + p_.f_ext[3 * i + d] + p_.f_contact[3 * i + d]) / p_.mass[i];
 }
 
 void ExplicitSolver::update_momentum_and_kinetic() {
@@ -143,6 +218,15 @@ void ExplicitSolver::update_momentum_and_kinetic() {
     py += p_.mass[i] * v[1];
     pz += p_.mass[i] * v[2];
   }
+  if (sphere_) {
+    const RigidSphere& s = *sphere_;
+    ledger_.kinetic_sphere = s.kinetic_energy();
+    ledger_.momentum_sphere = {s.mass_kg * s.v[0], s.mass_kg * s.v[1], s.mass_kg * s.v[2]};
+    ke += ledger_.kinetic_sphere;
+    px += ledger_.momentum_sphere[0];
+    py += ledger_.momentum_sphere[1];
+    pz += ledger_.momentum_sphere[2];
+  }
   ledger_.kinetic = ke;
   ledger_.momentum = {px, py, pz};
   ledger_.material_dissipated = std::visit(
@@ -154,17 +238,108 @@ void ExplicitSolver::update_momentum_and_kinetic() {
       material_);
 }
 
-bool ExplicitSolver::step() {
-  const double h = dt();
+StepFailure ExplicitSolver::attempt(double h) {
+  inverted_ = -1;
+  if (sphere_)  // first half kick of the sphere, with the particles' (inside velocity_verlet_step)
+    for (int d = 0; d < 3; ++d) sphere_->v[d] += 0.5 * h * sphere_->force[d] / sphere_->mass_kg;
   velocity_verlet_step(*this, h);
+  if (sphere_)  // second half kick, with the force of the new configuration
+    for (int d = 0; d < 3; ++d) sphere_->v[d] += 0.5 * h * sphere_->force[d] / sphere_->mass_kg;
   time_ += h;
-  ++steps_;
   update_momentum_and_kinetic();
-  if (failure_ < 0 && !std::isfinite(ledger_.kinetic))  // name the first particle that went non-finite
-    for (std::size_t i = 0; i < p_.n && failure_ < 0; ++i)
-      if (!std::isfinite(p_.v[3 * i]) || !std::isfinite(p_.v[3 * i + 1]) || !std::isfinite(p_.v[3 * i + 2]))
-        failure_ = static_cast<std::int64_t>(i);
-  return failure_ < 0;
+
+  failure_ = FailureReport{};
+  std::int64_t particle = first_non_finite(p_);
+  StepFailure kind = StepFailure::None;
+  if (particle >= 0) {
+    kind = StepFailure::NonFinite;
+  } else if (sphere_ && !(std::isfinite(sphere_->x[0] + sphere_->x[1] + sphere_->x[2] + sphere_->v[0] +
+                                        sphere_->v[1] + sphere_->v[2]))) {
+    kind = StepFailure::NonFinite;
+  } else if (inverted_ >= 0) {
+    kind = StepFailure::InvertedVolume;
+    particle = inverted_;
+  } else if ((particle = first_outside(p_, domain_)) >= 0) {
+    kind = StepFailure::OutOfDomain;
+  }
+  if (kind != StepFailure::None) {
+    failure_.kind = kind;
+    failure_.particle = particle;
+    if (particle >= 0) {
+      const std::size_t i = static_cast<std::size_t>(particle);
+      for (int d = 0; d < 3; ++d) {
+        failure_.x[d] = p_.x[3 * i + d];
+        failure_.v[d] = p_.v[3 * i + d];
+      }
+      failure_.volume_m3 = p_.volume[i];
+      failure_.volume0_m3 = p_.volume0[i];
+    } else if (sphere_) {
+      failure_.x = sphere_->x;
+      failure_.v = sphere_->v;
+    }
+  }
+  return kind;
+}
+
+bool ExplicitSolver::step() {
+  save_state();
+  double h = dt();
+  const bool guard = options_.fixed_dt_s <= 0 && options_.dt_collapse_fraction > 0;
+  for (int repeat = 0;; ++repeat) {
+    StepFailure kind = attempt(h);
+    if (kind == StepFailure::None && guard && dt_ < options_.dt_collapse_fraction * h) {
+      if (repeat < options_.max_step_repeats) {
+        const double smaller = dt_;
+        restore_state();
+        ++repeats_;
+        h = smaller;
+        continue;
+      }
+      kind = StepFailure::StepCollapse;
+      failure_ = FailureReport{};
+      failure_.kind = kind;
+    }
+    if (kind != StepFailure::None) {
+      failure_.time_s = saved_.time;
+      failure_.dt_s = h;
+      failure_.step = steps_ + 1;
+      restore_state();
+      return false;
+    }
+    break;
+  }
+  ++steps_;
+  last_dt_ = h;
+  return true;
+}
+
+void ExplicitSolver::save_state() {
+  saved_.p = p_;
+  if (saved_.material) *saved_.material = material_; else saved_.material.emplace(material_);
+  saved_.f_ext_old = f_ext_old_;
+  saved_.f_contact_old = f_contact_old_;
+  saved_.sphere = sphere_;
+  saved_.sphere_force_old = sphere_force_old_;
+  saved_.contact = contact_;
+  saved_.ledger = ledger_;
+  saved_.time = time_;
+  saved_.dt = dt_;
+  saved_.wall_force = wall_force_;
+}
+
+// The shape cache is not restored: every step rebuilds it before using it.
+void ExplicitSolver::restore_state() {
+  p_ = saved_.p;
+  material_ = *saved_.material;
+  f_ext_old_ = saved_.f_ext_old;
+  f_contact_old_ = saved_.f_contact_old;
+  sphere_ = saved_.sphere;
+  sphere_force_old_ = saved_.sphere_force_old;
+  contact_ = saved_.contact;
+  ledger_ = saved_.ledger;
+  time_ = saved_.time;
+  dt_ = saved_.dt;
+  wall_force_ = saved_.wall_force;
 }
 
 }  // namespace uhpc::macro

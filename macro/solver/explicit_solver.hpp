@@ -9,8 +9,16 @@
 //   4. RK gradients at x_n+1 (Midpoint only: End reuses step 2), nodal-integration internal forces,
 //      wall and reaction forces, a = f / m
 //   5. v += dt/2 a, constraints; energies and momentum; next dt = CFL * min critical step
+// The rigid sphere (rigid_sphere.hpp), when there is one, gets the same kicks and drift in lockstep:
+// its half kicks bracket the particles' Verlet step and it drifts where they drift (at the start of
+// step 2), so both are advanced by one velocity Verlet with forces from one configuration.
+// Every step first saves the state. After the step: (a) the robustness checks (step_health.hpp): on a
+// failure the solver goes back to the saved (last good) state and reports the failed attempt;
+// (b) the step-collapse guard (after Laghos): when the new stable step is below dt_collapse_fraction
+// times the step just taken, the step is repeated from the saved state with the new stable step.
 // Nothing allocates inside steps once the neighbour counts have settled.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "solver/conditions.hpp"
@@ -18,6 +26,8 @@
 #include "solver/internal_force.hpp"
 #include "solver/material_set.hpp"
 #include "solver/particles.hpp"
+#include "solver/rigid_sphere.hpp"
+#include "solver/step_health.hpp"
 #include "solver/second_gradients.hpp"
 #include "solver/shape_cache.hpp"
 #include "solver/verlet.hpp"
@@ -45,6 +55,15 @@ struct SolverOptions {
   BulkViscosity viscosity;     // {0, 0} switches it off
   Stabilization stabilization = Stabilization::Nsni;
   SecondGradientOptions second_gradients;  // NSNI strain gradients (quadratic implicit second derivatives)
+  // Step-collapse guard: repeat a step whose new stable step is below this fraction of the step taken
+  // (0 switches the guard off; so does fixed_dt_s). With CFL 0.4 and 0.5 an accepted step was at most
+  // 0.8 of the critical step of the configuration it produced.
+  double dt_collapse_fraction = 0.5;
+  int max_step_repeats = 10;  // repeats of one step before it fails with StepFailure::StepCollapse
+  // Particles must stay inside this box; unset: the bounding box of the particles and the sphere at
+  // initialize(), grown on every side by domain_margin times its largest extent.
+  std::optional<Region> domain;
+  double domain_margin = 1.0;
 };
 
 class ExplicitSolver {
@@ -54,13 +73,16 @@ class ExplicitSolver {
 
   void add_wall(const Wall& wall) { walls_.push_back(wall); }
   void add_prescribed_velocity(const PrescribedVelocity& bc) { prescribed_.push_back(bc); }
+  // The free rigid projectile (at most one; validated). Set before initialize() (std::logic_error after).
+  void set_sphere(const RigidSphere& sphere);
 
   // Forces and accelerations at t = 0, initial energies and momentum, the first stable step. Call once
   // after the conditions are set (initial velocities in particles().v).
   void initialize();
-  // One step of size dt() (or fixed_dt_s, which is not checked against the stable step). Returns false
-  // (the state of the failed step is kept: the last good state is the caller's to save) when a volume
-  // became non-positive or a velocity non-finite; failure_particle() then names a particle.
+  // One step of size dt() (or fixed_dt_s, which is not checked against the stable step), repeated with
+  // a smaller step when the stable step collapses. Returns false when the step failed (step_health.hpp):
+  // the solver is then back in the state before the step (the last good state) and failure() describes
+  // the failed attempt.
   bool step();
 
   double time() const { return time_; }
@@ -71,10 +93,18 @@ class ExplicitSolver {
   const Particles& particles() const { return p_; }
   Particles& particles() { return p_; }
   const MaterialSet& material() const { return material_; }
-  const ShapeCache& shapes() const { return shapes_; }  // at the current configuration after a step
+  // At the current configuration after a successful step (after a failed one: at the failed attempt's).
+  const ShapeCache& shapes() const { return shapes_; }
   const SolverOptions& options() const { return options_; }
   double wall_force_magnitude() const { return wall_force_; }  // total normal wall force, last step
-  std::int64_t failure_particle() const { return failure_; }
+  std::int64_t failure_particle() const { return failure_.particle; }
+  const FailureReport& failure() const { return failure_; }
+  std::int64_t step_repeats() const { return repeats_; }  // repeats by the step-collapse guard, whole run
+  double last_dt() const { return last_dt_; }             // the step actually taken by the last step()
+  const Region& domain() const { return domain_; }
+  bool has_sphere() const { return sphere_.has_value(); }
+  const RigidSphere& sphere() const { return *sphere_; }  // requires has_sphere()
+  const SphereContactSums& contact() const { return contact_; }  // last force evaluation
 
   // The physics interface of velocity_verlet_step.
   VerletArrays verlet_arrays() { return {p_.x.data(), p_.x_prev.data(), p_.v.data(), p_.a.data(), 3 * p_.n}; }
@@ -85,6 +115,10 @@ class ExplicitSolver {
   const SecondGradientOptions* second_options() const;  // null without NSNI
   void compute_forces();  // f_int, f_ext and a at the current configuration (shapes_ up to date)
   void update_momentum_and_kinetic();
+  StepFailure attempt(double h);  // one velocity Verlet step of size h and the checks
+  void save_state();
+  Region default_domain() const;
+  void restore_state();
 
   Particles p_;
   MaterialSet material_;
@@ -93,10 +127,29 @@ class ExplicitSolver {
   std::vector<PrescribedVelocity> prescribed_;
   ShapeCache shapes_;
   InternalForce force_;
-  std::vector<double> f_ext_old_;
+  std::vector<double> f_ext_old_, f_contact_old_;
+  std::optional<RigidSphere> sphere_;
+  Vec3 sphere_force_old_{};
+  std::vector<double> contact_k_;  // penalty stiffness per particle, fixed at initialize()
+  double min_contact_radius_ = 0.0;
+  SphereContactSums contact_;
+  Region domain_;
   EnergyLedger ledger_;
-  double time_ = 0.0, dt_ = 0.0, wall_force_ = 0.0;
-  std::int64_t steps_ = 0, failure_ = -1;
+  double time_ = 0.0, dt_ = 0.0, wall_force_ = 0.0, last_dt_ = 0.0;
+  std::int64_t steps_ = 0, repeats_ = 0, inverted_ = -1;
+  bool initialized_ = false;
+  FailureReport failure_;
+  // The last good state, saved at the start of every step (same-size copies: no allocation).
+  struct Saved {
+    Particles p;
+    std::optional<MaterialSet> material;
+    std::vector<double> f_ext_old, f_contact_old;
+    std::optional<RigidSphere> sphere;
+    Vec3 sphere_force_old{};
+    SphereContactSums contact;
+    EnergyLedger ledger;
+    double time = 0.0, dt = 0.0, wall_force = 0.0;
+  } saved_;
 };
 
 }  // namespace uhpc::macro

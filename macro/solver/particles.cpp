@@ -17,6 +17,7 @@ Particles Particles::from_body(const ParticleBody& body, double density_kg_m3, d
   p.a.assign(3 * n, 0.0);
   p.f_int.assign(3 * n, 0.0);
   p.f_ext.assign(3 * n, 0.0);
+  p.f_contact.assign(3 * n, 0.0);
   p.volume = body.volume;
   p.volume0 = body.volume;
   p.spacing = body.spacing;

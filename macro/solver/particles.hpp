@@ -18,6 +18,7 @@ struct Particles {
   std::vector<double> a;        // acceleration (3n), m/s^2
   std::vector<double> f_int;    // internal force (3n), N
   std::vector<double> f_ext;    // external force: walls and reactions of prescribed velocities (3n), N
+  std::vector<double> f_contact;  // force from the rigid sphere (3n), N (kept apart: it is not external)
   std::vector<double> mass;     // lumped mass rho0 V0 (constant), kg
   std::vector<double> volume;   // current volume V_I, m^3
   std::vector<double> volume0;  // reference volume V0_I

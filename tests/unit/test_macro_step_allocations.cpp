@@ -42,5 +42,31 @@ TEST(MacroStepAllocations, NoAllocationInsideTheStepLoop) {
   EXPECT_EQ(g_allocations.load() - before, 0);
 }
 
+// The same with the rigid sphere pressing into the box during the counted steps (contact forces, the
+// contact ledger and the saved state of the step-collapse guard reuse their memory too).
+TEST(MacroStepAllocations, NoAllocationWithTheSphereInContact) {
+  const ParticleBody body = box_body(0.05, 0.04, 0.03, 0.005);
+  SolverOptions options;
+  options.support_factor = 2.5;  // NSNI at 2.0 is unstable under a point contact (macro/README.md)
+  ExplicitSolver solver(Particles::from_body(body, 2500.0, options.support_factor),
+                        make_material_set(ElasticMaterial(ElasticParams{2500.0, 20e9, 15e9}), body.size()), options);
+  RigidSphere sphere;
+  sphere.mass_kg = 0.01;
+  sphere.radius_m = 0.006;
+  sphere.x = {0.025, 0.02, -0.0053};  // a few um from the four particles nearest its axis
+  sphere.v = {0.0, 0.0, 50.0};
+  solver.set_sphere(sphere);
+  solver.initialize();
+  for (int s = 0; s < 5; ++s) ASSERT_TRUE(solver.step());
+  int in_contact = 0;
+  const long before = g_allocations.load();
+  for (int s = 0; s < 50; ++s) {
+    ASSERT_TRUE(solver.step()) << to_string(solver.failure().kind);
+    if (solver.contact().particles_in_contact > 0) ++in_contact;
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(in_contact, 20);
+}
+
 }  // namespace
 }  // namespace uhpc::macro

@@ -1,0 +1,102 @@
+#include "case_config.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "uhpc/errors.hpp"
+
+namespace uhpc::macro {
+
+namespace {
+
+TargetSettings read_target(const Config& t) {
+  TargetSettings s;
+  const std::string shape = t.choice("shape", {"box", "disc"});
+  if (shape == "box") {
+    s.shape = TargetSettings::Shape::Box;
+    const std::vector<double> size = t.numbers("size_m", Range::positive(), 3);
+    if (size.size() != 3) t.fail("size_m", fmt::format("expected 3 numbers (x, y, thickness along z), got {}", size.size()));
+    s.box_size_m = {size[0], size[1], size[2]};
+    s.box_spacing_m = t.number("spacing_m", Range::positive());
+    for (int d = 0; d < 3; ++d)
+      if (s.box_spacing_m > size[static_cast<std::size_t>(d)])
+        t.fail("spacing_m", fmt::format("value {} exceeds the box size", s.box_spacing_m));
+  } else {
+    s.shape = TargetSettings::Shape::Disc;
+    s.disc.radius_m = t.number("radius_m", Range::positive());
+    s.disc.thickness_m = t.number("thickness_m", Range::positive());
+    s.disc.h_axis_m = t.number("h_axis_m", Range::positive());
+    s.disc.h_rim_m = t.number("h_rim_m", Range::positive());
+    s.disc.core_radius_m = t.number("core_radius_m", Range::closed(0.0, s.disc.radius_m));
+    s.disc.z0_m = 0.0;
+    if (s.disc.h_axis_m > s.disc.thickness_m)
+      t.fail("h_axis_m", "spacing larger than the thickness leaves no particle layer");
+  }
+  return s;
+}
+
+ProjectileSettings read_projectile(const Config& p) {
+  ProjectileSettings s;
+  s.mass_kg = p.number("mass_kg", Range::positive());
+  s.radius_m = p.number("radius_m", Range::positive());
+  s.initial_gap_m = p.number("initial_gap_m", Range::non_negative());
+  s.velocity_m_s = p.number("velocity_m_s", Range::positive());
+  const Config c = p.section("contact");
+  s.contact.penalty_scale = c.number("penalty_scale", Range::positive());
+  s.contact.contact_radius_factor = c.number("contact_radius_factor", Range::open(0.0, 2.0));
+  return s;
+}
+
+SupportSettings read_support(const Config& s) {
+  SupportSettings out;
+  out.fixed_rim = s.choice("rim", {"free", "fixed"}) == "fixed";
+  out.rim_width_m = s.number("rim_width_m", Range::positive());
+  return out;
+}
+
+RunSettings read_run(const Config& r) {
+  RunSettings s;
+  s.end_time_s = r.number("end_time_s", Range::positive());
+  s.output_interval_steps = r.integer("output_interval_steps", Range::at_least(1));
+  s.stop_after_exit_s = r.number("stop_after_exit_s", Range::any());
+  return s;
+}
+
+SolverOptions read_solver(const Config& c) {
+  SolverOptions o;
+  o.support_factor = c.number("support_factor", Range::closed(1.2, 3.0));
+  o.cfl = c.number("cfl", Range{0.0, 1.0, true, false});
+  o.stabilization = c.flag("nsni") ? Stabilization::Nsni : Stabilization::None;
+  o.strain_configuration =
+      c.choice("strain_configuration", {"midpoint", "end"}) == "midpoint" ? StrainConfiguration::Midpoint : StrainConfiguration::End;
+  const Config v = c.section("bulk_viscosity");
+  o.viscosity.c_linear = v.number("linear", Range::non_negative());
+  o.viscosity.c_quadratic = v.number("quadratic", Range::non_negative());
+  o.dt_collapse_fraction = c.number("dt_collapse_fraction", Range{0.0, 1.0, false, true});
+  o.max_step_repeats = static_cast<int>(c.integer("max_step_repeats", Range::closed(0, 100)));
+  o.domain_margin = c.number("domain_margin", Range::positive());
+  return o;
+}
+
+}  // namespace
+
+CaseSettings read_case(const Config& cfg) {
+  CaseSettings s;
+  cfg.accept_any("notes");
+  s.target = read_target(cfg.section("target"));
+  s.projectile = read_projectile(cfg.section("projectile"));
+  s.support = read_support(cfg.section("support"));
+  s.run = read_run(cfg.section("run"));
+  s.solver = read_solver(cfg.section("solver"));
+  const double lateral = s.target.shape == TargetSettings::Shape::Box
+                             ? 0.5 * std::fmin(s.target.box_size_m[0], s.target.box_size_m[1])
+                             : s.target.disc.radius_m;
+  if (s.projectile.radius_m >= lateral)
+    cfg.section("projectile").fail("radius_m", "the sphere must be smaller than the target's half width");
+  if (s.support.fixed_rim && s.support.rim_width_m >= lateral)
+    cfg.section("support").fail("rim_width_m", "the fixed rim would cover the whole target");
+  return s;
+}
+
+}  // namespace uhpc::macro

@@ -1,0 +1,56 @@
+#pragma once
+// The case file of uhpc-macro (data/macro_*.json), read and validated in one pass: every key is read by
+// a typed getter with its range, and Config::finish() rejects any key nobody read. The material block
+// is read by material_factory.hpp through the same Config, so a misspelt material key fails too.
+// Geometry convention: the target's axis is z, its entry face is z = 0 and its exit face z = T; the
+// projectile starts on the axis below the entry face and moves along +z.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "bodies/generators.hpp"
+#include "solver/explicit_solver.hpp"
+#include "uhpc/config.hpp"
+
+namespace uhpc::macro {
+
+struct TargetSettings {
+  enum class Shape : std::uint8_t { Box, Disc } shape = Shape::Box;
+  std::array<double, 3> box_size_m{};  // box: x, y (centred on the axis) and z (thickness)
+  double box_spacing_m = 0.0;
+  DiscSpec disc;                       // disc: z0 = 0
+  double thickness_m() const { return shape == Shape::Box ? box_size_m[2] : disc.thickness_m; }
+};
+
+struct ProjectileSettings {
+  double mass_kg = 0.0;
+  double radius_m = 0.0;
+  double initial_gap_m = 0.0;  // between the sphere and the entry face, along the axis
+  double velocity_m_s = 0.0;   // along +z (towards the target)
+  SphereContactOptions contact;
+};
+
+struct SupportSettings {
+  bool fixed_rim = false;      // "free" (default of the shipped cases) or "fixed"
+  double rim_width_m = 0.0;    // particles within this distance of the lateral boundary are held fixed
+};
+
+struct RunSettings {
+  double end_time_s = 0.0;
+  std::int64_t output_interval_steps = 0;  // fields every N steps (and the first and last state)
+  double stop_after_exit_s = -1.0;         // < 0: run to end_time_s; else stop this long after the exit
+};
+
+struct CaseSettings {
+  TargetSettings target;
+  ProjectileSettings projectile;
+  SupportSettings support;
+  RunSettings run;
+  SolverOptions solver;
+};
+
+// Reads everything but the "material" block (material_factory.hpp); call Config::finish() after both.
+CaseSettings read_case(const Config& cfg);
+
+}  // namespace uhpc::macro

@@ -1,0 +1,56 @@
+#include "case_setup.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace uhpc::macro {
+
+ParticleBody make_target_body(const TargetSettings& t) {
+  if (t.shape == TargetSettings::Shape::Disc) return disc_body(t.disc);
+  ParticleBody body = box_body(t.box_size_m[0], t.box_size_m[1], t.box_size_m[2], t.box_spacing_m);
+  for (std::size_t i = 0; i < body.size(); ++i) {  // centre x and y on the axis; z in [0, thickness]
+    body.position[3 * i] -= 0.5 * t.box_size_m[0];
+    body.position[3 * i + 1] -= 0.5 * t.box_size_m[1];
+  }
+  return body;
+}
+
+std::vector<std::int32_t> rim_particles(const Particles& p, const CaseSettings& s) {
+  std::vector<std::int32_t> out;
+  if (!s.support.fixed_rim) return out;
+  const double w = s.support.rim_width_m;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    const double x = p.x[3 * i], y = p.x[3 * i + 1];
+    bool rim;
+    if (s.target.shape == TargetSettings::Shape::Disc) {
+      rim = std::hypot(x, y) > s.target.disc.radius_m - w;
+    } else {
+      rim = std::fabs(x) > 0.5 * s.target.box_size_m[0] - w || std::fabs(y) > 0.5 * s.target.box_size_m[1] - w;
+    }
+    if (rim) out.push_back(static_cast<std::int32_t>(i));
+  }
+  return out;
+}
+
+RigidSphere make_projectile(const ProjectileSettings& s) {
+  RigidSphere sphere;
+  sphere.mass_kg = s.mass_kg;
+  sphere.radius_m = s.radius_m;
+  sphere.x = {0.0, 0.0, -(s.radius_m + s.initial_gap_m)};
+  sphere.v = {0.0, 0.0, s.velocity_m_s};
+  sphere.contact = s.contact;
+  return sphere;
+}
+
+ExplicitSolver make_solver(const CaseSettings& s, const ParticleBody& body, MaterialSet material) {
+  const double rho = reference_density(material);
+  ExplicitSolver solver(Particles::from_body(body, rho, s.solver.support_factor), std::move(material), s.solver);
+  PrescribedVelocity rim;
+  rim.particles = rim_particles(solver.particles(), s);
+  if (!rim.particles.empty()) solver.add_prescribed_velocity(rim);
+  solver.set_sphere(make_projectile(s.projectile));
+  solver.initialize();
+  return solver;
+}
+
+}  // namespace uhpc::macro

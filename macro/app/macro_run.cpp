@@ -1,0 +1,165 @@
+#include "macro_run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <ostream>
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "case_config.hpp"
+#include "case_setup.hpp"
+#include "material_factory.hpp"
+#include "run_outputs.hpp"
+#include "uhpc/atomic_file.hpp"
+#include "uhpc/config.hpp"
+#include "uhpc/errors.hpp"
+#include "uhpc/progress.hpp"
+#include "uhpc/provenance.hpp"
+#include "uhpc/sdel_handoff.hpp"
+
+namespace fs = std::filesystem;
+
+namespace uhpc::macro {
+
+namespace {
+
+nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact, const BalanceTracker& balance,
+                           const std::string& model, double wall_s, const Provenance& provenance,
+                           std::size_t field_steps) {
+  const double vi = impact.impact_velocity_m_s, vf = s.sphere().v[2];
+  nlohmann::json r = {
+      {"impact_velocity_m_s", vi},
+      {"perforated", impact.perforated},
+      {"rebounded", impact.rebounded},
+      {"residual_velocity_m_s", nullptr},
+      {"exit_time_s", nullptr},
+      {"velocity_reduction", nullptr},
+      {"kinetic_energy_reduction", nullptr},
+      {"final_velocity_m_s", vf},
+      {"final_sphere_position_m", s.sphere().x},
+      {"end_time_s", s.time()},
+      {"material_model", model},
+      {"particle_count", s.particles().n},
+      {"steps", s.steps()},
+      {"step_repeats", s.step_repeats()},
+      {"field_outputs", field_steps},
+      {"wall_time_s", wall_s},
+      {"particle_steps_per_s", wall_s > 0 ? static_cast<double>(s.particles().n) * static_cast<double>(s.steps()) / wall_s : 0.0},
+      {"energy",
+       {{"initial_kinetic_J", s.ledger().kinetic_initial},
+        {"final_kinetic_J", s.ledger().kinetic},
+        {"final_sphere_kinetic_J", s.ledger().kinetic_sphere},
+        {"internal_J", s.ledger().internal},
+        {"dissipated_material_J", s.ledger().material_dissipated},
+        {"dissipated_viscous_J", s.ledger().viscous},
+        {"contact_J", s.ledger().contact},
+        {"external_work_J", s.ledger().external},
+        {"balance_error", BalanceTracker::energy_error(s)},
+        {"worst_balance_error", balance.worst_energy}}},
+      {"momentum",
+       {{"initial_N_s", s.ledger().momentum_initial},
+        {"final_N_s", s.ledger().momentum},
+        {"external_impulse_N_s", s.ledger().external_impulse},
+        {"balance_error", BalanceTracker::momentum_error(s)},
+        {"worst_balance_error", balance.worst_momentum}}},
+      {"provenance", provenance.to_json()}};
+  if (impact.finished()) {
+    const double vr = impact.residual_velocity_m_s;
+    r["residual_velocity_m_s"] = vr;
+    r["exit_time_s"] = impact.exit_time_s;
+    r["velocity_reduction"] = (vi - vr) / vi;
+    r["kinetic_energy_reduction"] = (vi * vi - vr * vr) / (vi * vi);
+  }
+  return r;
+}
+
+}  // namespace
+
+void run_macro(const MacroRunArgs& args) {
+  const Config cfg = Config::load(args.config_path, args.overrides);
+  const CaseSettings settings = read_case(cfg);
+  // The handoff is validated whenever it is given, whether or not the law uses it.
+  std::optional<SdelHandoff> sdel;
+  if (!args.sdel_path.empty()) sdel = read_sdel_handoff(args.sdel_path);
+  const ParticleBody body = make_target_body(settings.target);
+  MaterialChoice material = make_material(cfg.section("material"), body.size(), sdel);
+  cfg.finish();
+  if (sdel && !material.uses_sdel)
+    spdlog::info("the '{}' law does not use the SDEL: {} was validated and is ignored", material.model, args.sdel_path);
+
+  fs::create_directories(args.out);
+  for (const char* stale : {"result.json", "diagnostic.json", "history.csv"}) fs::remove(args.out / stale);
+  const Provenance provenance = Provenance::make("uhpc-macro", cfg.hash());
+
+  ExplicitSolver solver = make_solver(settings, body, std::move(material.set));
+  spdlog::info("{} particles, material '{}', sphere {} kg at {} m/s, first step {:.3e} s, end time {:.3e} s",
+               solver.particles().n, material.model, settings.projectile.mass_kg, settings.projectile.velocity_m_s,
+               solver.dt(), settings.run.end_time_s);
+
+  FieldOutput fields(args.out, solver.material());
+  fields.write_provenance(provenance);
+  History history;
+  ImpactTracker impact;
+  impact.thickness_m = settings.target.thickness_m();
+  impact.impact_velocity_m_s = settings.projectile.velocity_m_s;
+  BalanceTracker balance;
+  fields.write(solver);
+  history.add(solver);
+
+  // Progress over simulated time, counted in nanoseconds; the step rate goes into the log lines.
+  const auto total_ns = static_cast<std::uint64_t>(std::llround(settings.run.end_time_s * 1e9));
+  std::ostream quiet_sink(nullptr);  // -q: no progress line either
+  Progress progress("uhpc-macro simulated", total_ns,
+                    ProgressOptions{args.quiet ? &quiet_sink : nullptr, -1, 10, 0.1, "ns"});
+  std::uint64_t done_ns = 0;
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+
+  while (solver.time() < settings.run.end_time_s) {
+    if (!solver.step()) {
+      // The solver is back in the last good state: keep it, say what failed, and stop.
+      progress.finish();
+      fields.write(solver);
+      history.save(args.out / "history.csv");
+      const FailureReport& f = solver.failure();
+      write_text_atomic(args.out / "diagnostic.json", diagnostic_json(solver, f).dump(2) + "\n");
+      throw NumericalError(fmt::format("{} at step {} (t = {:.6e} s, particle {}); last good state at t = {:.6e} s "
+                                       "written to {}, diagnostic in {}",
+                                       to_string(f.kind), f.step, f.time_s + f.dt_s, f.particle, solver.time(),
+                                       (args.out / "fields.h5").string(), (args.out / "diagnostic.json").string()));
+    }
+    history.add(solver);
+    impact.update(solver);
+    balance.update(solver);
+    if (solver.steps() % settings.run.output_interval_steps == 0) {
+      fields.write(solver);
+      spdlog::info("step {}, t = {:.3f} us, {:.1f} steps/s, sphere z = {:.3f} mm, v_z = {:.2f} m/s, {} in contact",
+                   solver.steps(), solver.time() * 1e6, solver.steps() / elapsed(), solver.sphere().x[2] * 1e3,
+                   solver.sphere().v[2], solver.contact().particles_in_contact);
+    }
+    const auto now_ns = static_cast<std::uint64_t>(std::llround(std::fmin(solver.time(), settings.run.end_time_s) * 1e9));
+    if (now_ns > done_ns) {
+      progress.advance(now_ns - done_ns);
+      done_ns = now_ns;
+    }
+    if (impact.finished() && settings.run.stop_after_exit_s >= 0 &&
+        solver.time() >= impact.exit_time_s + settings.run.stop_after_exit_s)
+      break;
+  }
+  progress.finish();
+  const double wall = elapsed();
+  fields.write(solver);
+  history.save(args.out / "history.csv");
+  const nlohmann::json result = result_json(solver, impact, balance, material.model, wall, provenance, fields.steps_written());
+  write_text_atomic(args.out / "result.json", result.dump(2) + "\n");
+  spdlog::info("{} steps ({} repeated) in {:.2f} s, {:.3g} particle-steps/s; sphere v_z {:.2f} m/s ({}); energy "
+               "balance {:.2e}, momentum balance {:.2e}",
+               solver.steps(), solver.step_repeats(), wall, result["particle_steps_per_s"].get<double>(),
+               solver.sphere().v[2],
+               impact.perforated ? "perforated" : (impact.rebounded ? "rebounded" : "still in the target"),
+               BalanceTracker::energy_error(solver), balance.worst_momentum);
+}
+
+}  // namespace uhpc::macro

@@ -1,0 +1,23 @@
+#pragma once
+// One uhpc-macro run: read and validate the case (and the SDEL handoff), build the target, material,
+// support and projectile, step to the end time (or until shortly after the projectile leaves), and
+// write result.json, history.csv and fields.h5/.xdmf into `out`. Throws InputError for bad input
+// (exit code 2) and, after writing the last good state and diagnostic.json, NumericalError for a
+// failed run (exit code 1).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace uhpc::macro {
+
+struct MacroRunArgs {
+  std::string config_path;
+  std::vector<std::string> overrides;
+  std::string sdel_path;  // empty: none
+  std::filesystem::path out;
+  bool quiet = false;  // no progress line
+};
+
+void run_macro(const MacroRunArgs& args);
+
+}  // namespace uhpc::macro

@@ -1,0 +1,52 @@
+#include "material_factory.hpp"
+
+namespace uhpc::macro {
+
+namespace {
+
+ElasticParams read_elastic(const Config& b) {
+  ElasticParams p;
+  p.density_kg_m3 = b.number("density_kg_m3", Range::positive());
+  p.bulk_modulus_Pa = b.number("bulk_modulus_Pa", Range::positive());
+  p.shear_modulus_Pa = b.number("shear_modulus_Pa", Range::positive());
+  return p;
+}
+
+J2Params read_j2(const Config& b) {
+  const ElasticParams e = read_elastic(b);
+  J2Params p;
+  p.density_kg_m3 = e.density_kg_m3;
+  p.bulk_modulus_Pa = e.bulk_modulus_Pa;
+  p.shear_modulus_Pa = e.shear_modulus_Pa;
+  p.yield_stress_Pa = b.number("yield_stress_Pa", Range::positive());
+  p.hardening_modulus_Pa = b.number("hardening_modulus_Pa", Range::non_negative());
+  return p;
+}
+
+}  // namespace
+
+MaterialChoice make_material(const Config& block, std::size_t n, const std::optional<SdelHandoff>& /*sdel*/) {
+  const std::string model = block.choice("model", {"elastic", "j2"});
+  if (model == "elastic") {
+    return {make_material_set(ElasticMaterial(read_elastic(block)), n), model, false};
+  }
+  // model == "j2" (the choice above admits nothing else). Neither law uses the SDEL handoff.
+  return {make_material_set(J2Material(read_j2(block)), n), model, false};
+}
+
+std::vector<std::string> law_output_fields(const MaterialSet& set) {
+  return std::visit([](const auto& b) { return std::decay_t<decltype(b.law)>::output_fields(); }, set);
+}
+
+void law_output_values(const MaterialSet& set, std::vector<double>& out) {
+  std::visit(
+      [&](const auto& b) {
+        const std::size_t k = std::decay_t<decltype(b.law)>::output_fields().size();
+        out.assign(b.state.size() * k, 0.0);
+        if (k == 0) return;
+        for (std::size_t i = 0; i < b.state.size(); ++i) b.law.output_values(b.state[i], out.data() + k * i);
+      },
+      set);
+}
+
+}  // namespace uhpc::macro

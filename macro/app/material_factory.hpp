@@ -1,0 +1,33 @@
+#pragma once
+// The "material" block of a case -> the solver's MaterialSet. One branch per law:
+//   {"model": "elastic", "density_kg_m3", "bulk_modulus_Pa", "shear_modulus_Pa"}
+//   {"model": "j2", ... as elastic ..., "yield_stress_Pa", "hardening_modulus_Pa"}
+// Adding a law (the AFC concrete model) is one more name in kMaterialModels' choice and one more
+// branch in make_material: read its parameters from the block, take the SDEL handoff if it uses one.
+// The SDEL handoff (--sdel) is validated by the program before this is called; laws that do not use
+// it ignore it (the program says so in its log).
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solver/material_set.hpp"
+#include "uhpc/config.hpp"
+#include "uhpc/sdel_handoff.hpp"
+
+namespace uhpc::macro {
+
+struct MaterialChoice {
+  MaterialSet set;
+  std::string model;   // the block's "model"
+  bool uses_sdel = false;  // the law took the handoff
+};
+
+MaterialChoice make_material(const Config& block, std::size_t particles, const std::optional<SdelHandoff>& sdel);
+
+// The names of the per-law output fields of `set` (Law::output_fields()).
+std::vector<std::string> law_output_fields(const MaterialSet& set);
+// Writes every particle's law fields into out (n x fields, row-major).
+void law_output_values(const MaterialSet& set, std::vector<double>& out);
+
+}  // namespace uhpc::macro

@@ -1,0 +1,116 @@
+#include "run_outputs.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "material_factory.hpp"
+#include "uhpc/atomic_file.hpp"
+
+namespace uhpc::macro {
+
+FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material)
+    : writer_(dir, "fields"), law_fields_(law_output_fields(material)) {}
+
+void FieldOutput::write(const ExplicitSolver& solver) {
+  if (solver.time() <= last_time_) return;
+  const Particles& p = solver.particles();
+  pressure_.resize(p.n);
+  equivalent_.resize(p.n);
+  for (std::size_t i = 0; i < p.n; ++i) {
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> s(p.stress.data() + 9 * i);
+    pressure_[i] = pressure_of(s);
+    equivalent_[i] = von_mises(s);
+  }
+  std::vector<ParticleField> fields = {{"velocity", "m/s", 3, p.v.data()},
+                                       {"pressure", "Pa", 1, pressure_.data()},
+                                       {"equivalent_stress", "Pa", 1, equivalent_.data()},
+                                       {"volume", "m^3", 1, p.volume.data()}};
+  // The law's fields come interleaved (n x k); each is written as its own scalar array.
+  law_output_values(solver.material(), law_values_);
+  const std::size_t k = law_fields_.size();
+  column_.resize(k * p.n);
+  for (std::size_t f = 0; f < k; ++f) {
+    for (std::size_t i = 0; i < p.n; ++i) column_[f * p.n + i] = law_values_[k * i + f];
+    fields.push_back({law_fields_[f], "1", 1, column_.data() + f * p.n});
+  }
+  writer_.write_step(solver.time(), p.n, 3, p.x.data(), fields);
+  last_time_ = solver.time();
+}
+
+History::History() {
+  text_ =
+      "time_s,step,dt_s,sphere_x_m,sphere_y_m,sphere_z_m,sphere_vx_m_s,sphere_vy_m_s,sphere_vz_m_s,"
+      "contact_force_x_N,contact_force_y_N,contact_force_z_N,contact_particles,kinetic_J,kinetic_sphere_J,"
+      "internal_J,dissipated_material_J,dissipated_viscous_J,contact_J,contact_stored_J,external_work_J,"
+      "energy_balance_error_J,momentum_x_N_s,momentum_y_N_s,momentum_z_N_s\n";
+}
+
+void History::add(const ExplicitSolver& s) {
+  const EnergyLedger& e = s.ledger();
+  const RigidSphere& sp = s.sphere();
+  text_ += fmt::format("{:.17g},{},{:.6e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.6e},{:.6e},{},{:.9e},{:.9e},"
+                       "{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.9e},{:.9e},{:.9e}\n",
+                       s.time(), s.steps(), s.last_dt(), sp.x[0], sp.x[1], sp.x[2], sp.v[0], sp.v[1], sp.v[2],
+                       sp.force[0], sp.force[1], sp.force[2], s.contact().particles_in_contact, e.kinetic,
+                       e.kinetic_sphere, e.internal, e.material_dissipated, e.viscous, e.contact, e.contact_stored,
+                       e.external, e.balance_error(), e.momentum[0], e.momentum[1], e.momentum[2]);
+  ++rows_;
+}
+
+void History::save(const std::filesystem::path& file) const { write_text_atomic(file, text_); }
+
+void ImpactTracker::update(const ExplicitSolver& s) {
+  if (finished()) return;
+  const RigidSphere& sp = s.sphere();
+  const bool free = s.contact().particles_in_contact == 0;
+  if (free && sp.x[2] - sp.radius_m > thickness_m && sp.v[2] > 0) {
+    perforated = true;
+  } else if (free && sp.x[2] + sp.radius_m < 0.0 && sp.v[2] < 0) {
+    rebounded = true;
+  } else {
+    return;
+  }
+  exit_time_s = s.time();
+  residual_velocity_m_s = sp.v[2];
+}
+
+double BalanceTracker::energy_error(const ExplicitSolver& s) {
+  return std::fabs(s.ledger().balance_error()) / s.ledger().kinetic_initial;
+}
+
+double BalanceTracker::momentum_error(const ExplicitSolver& s) {
+  const EnergyLedger& e = s.ledger();
+  double err = 0.0, ref = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const double r = e.momentum[d] - e.momentum_initial[d] - e.external_impulse[d];
+    err += r * r;
+    ref += e.momentum_initial[d] * e.momentum_initial[d];
+  }
+  return std::sqrt(err / ref);
+}
+
+void BalanceTracker::update(const ExplicitSolver& s) {
+  worst_energy = std::fmax(worst_energy, energy_error(s));
+  worst_momentum = std::fmax(worst_momentum, momentum_error(s));
+}
+
+nlohmann::json diagnostic_json(const ExplicitSolver& s, const FailureReport& f) {
+  nlohmann::json failed = {{"particle", f.particle},
+                           {"position_m", f.x},
+                           {"velocity_m_s", f.v},
+                           {"volume_m3", f.volume_m3},
+                           {"reference_volume_m3", f.volume0_m3}};
+  if (f.particle < 0) failed["particle"] = nullptr;
+  return {{"status", "numerical_failure"},
+          {"reason", to_string(f.kind)},
+          {"failed_step", f.step},
+          {"failed_step_dt_s", f.dt_s},
+          {"failed_state", failed},
+          {"last_good_state", {{"time_s", s.time()}, {"steps", s.steps()}, {"written_to", "fields.h5 (last step)"}}},
+          {"domain_m", {{"lo", s.domain().lo}, {"hi", s.domain().hi}}},
+          {"step_repeats", s.step_repeats()},
+          {"sphere", {{"position_m", s.sphere().x}, {"velocity_m_s", s.sphere().v}}}};
+}
+
+}  // namespace uhpc::macro

@@ -1,0 +1,71 @@
+#pragma once
+// The files of a uhpc-macro run (ARCHITECTURE.md section 2), kept apart from the time loop:
+//   FieldOutput    fields.h5 + fields.xdmf (ParaView) through uhpc::ParticleFieldWriter: position,
+//                  velocity, pressure, equivalent (von Mises) stress, volume, and the law's own fields
+//                  (Law::output_fields(), dimensionless)
+//   History        history.csv, one row per step: time, projectile, contact, energies, momentum
+//   ImpactTracker  impact and residual velocity: the sphere's axial velocity at the first step at which
+//                  it is past the exit face (its rear surface beyond z = T) and touches no particle
+//                  (PHYSICS.md section 5); also a rebound (back past the entry face, moving away)
+//   BalanceTracker the worst energy and momentum balance errors over the run
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "solver/explicit_solver.hpp"
+#include "uhpc/xdmf.hpp"
+
+namespace uhpc::macro {
+
+class FieldOutput {
+ public:
+  FieldOutput(const std::filesystem::path& dir, const MaterialSet& material);
+  // Appends the solver's current state (skipped when a state of the same time was written last).
+  void write(const ExplicitSolver& solver);
+  void write_provenance(const Provenance& provenance) { writer_.write_provenance(provenance); }
+  std::size_t steps_written() const { return writer_.steps_written(); }
+
+ private:
+  ParticleFieldWriter writer_;
+  std::vector<std::string> law_fields_;
+  std::vector<double> pressure_, equivalent_, law_values_, column_;
+  double last_time_ = -1.0;
+};
+
+class History {
+ public:
+  History();
+  void add(const ExplicitSolver& solver);
+  void save(const std::filesystem::path& file) const;  // atomic
+  std::size_t rows() const { return rows_; }
+
+ private:
+  std::string text_;
+  std::size_t rows_ = 0;
+};
+
+struct ImpactTracker {
+  double thickness_m = 0.0;
+  double impact_velocity_m_s = 0.0;
+  bool perforated = false, rebounded = false;
+  double exit_time_s = -1.0;         // perforation or rebound
+  double residual_velocity_m_s = 0.0;
+  void update(const ExplicitSolver& solver);
+  bool finished() const { return perforated || rebounded; }
+};
+
+struct BalanceTracker {
+  double worst_energy = 0.0;    // max |balance error| / initial kinetic energy
+  double worst_momentum = 0.0;  // max |p - p0 - external impulse| / |p0|
+  void update(const ExplicitSolver& solver);
+  static double energy_error(const ExplicitSolver& solver);
+  static double momentum_error(const ExplicitSolver& solver);
+};
+
+// The diagnostic of a failed run (diagnostic.json).
+nlohmann::json diagnostic_json(const ExplicitSolver& solver, const FailureReport& failure);
+
+}  // namespace uhpc::macro

@@ -1,0 +1,141 @@
+// uhpc-macro's robustness contract end to end: a run that sends a particle out of the domain stops with
+// a NumericalError (exit code 1 from the program) after writing diagnostic.json and the last good state
+// (the last step of fields.h5, the last row of history.csv), and no result.json.
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "case_setup.hpp"
+#include "macro_run.hpp"
+#include "test_support.hpp"
+#include "uhpc/errors.hpp"
+#include "uhpc/hdf5_io.hpp"
+
+namespace uhpc::macro {
+namespace {
+
+class MacroApp : public test::ScratchDirTest {};
+
+// 3000 m/s throws particles off the impact face; a domain margin of 5 % of the block (2.4 mm) lets them out.
+const std::vector<std::string> kEscape = {"projectile.velocity_m_s=3000", "solver.domain_margin=0.05"};
+
+TEST_F(MacroApp, ParticleLeavingTheDomainStopsWithDiagnosticAndLastGoodState) {
+  MacroRunArgs args;
+  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  args.overrides = kEscape;
+  args.out = dir_;
+  args.quiet = true;
+  const std::string message = test::error_of<NumericalError>([&] { run_macro(args); });
+  EXPECT_NE(message.find("particle_left_domain"), std::string::npos) << message;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "result.json"));
+
+  const nlohmann::json d = nlohmann::json::parse(test::read_file(dir_ / "diagnostic.json"));
+  EXPECT_EQ(d.at("reason"), "particle_left_domain");
+  const double last_good = d.at("last_good_state").at("time_s").get<double>();
+  const auto& x = d.at("failed_state").at("position_m");
+  const auto& hi = d.at("domain_m").at("hi");
+  const auto& lo = d.at("domain_m").at("lo");
+  bool outside = false;
+  for (int k = 0; k < 3; ++k) outside = outside || x[k].get<double>() > hi[k].get<double>() || x[k].get<double>() < lo[k].get<double>();
+  EXPECT_TRUE(outside);
+
+  // fields.h5: its last step is the last good state, every particle inside the domain.
+  H5Reader r(dir_ / "fields.h5");
+  const std::vector<std::string> groups = r.children("");
+  ASSERT_FALSE(groups.empty());
+  const std::string last = groups.back();
+  EXPECT_DOUBLE_EQ(r.double_attribute(last, "time_s"), last_good);
+  const H5Array<double> pos = r.read_doubles(last + "/position");
+  for (std::size_t i = 0; i < pos.values.size(); ++i) {
+    EXPECT_LE(pos.values[i], hi[i % 3].get<double>());
+    EXPECT_GE(pos.values[i], lo[i % 3].get<double>());
+  }
+  // history.csv ends at the same time.
+  const std::string csv = test::read_file(dir_ / "history.csv");
+  const std::size_t start = csv.rfind('\n', csv.size() - 2) + 1;
+  EXPECT_DOUBLE_EQ(std::stod(csv.substr(start, csv.find(',', start) - start)), last_good);
+}
+
+TEST_F(MacroApp, ProgramExitsWithCodeOneOnANumericalFailure) {
+  std::string command = std::string(UHPC_BINARY_DIR) + "/macro/uhpc-macro -q --config " + UHPC_DATA_DIR +
+                        "/macro_elastic_block.json --out " + dir_.string() + " 2>" + (dir_ / "stderr.txt").string();
+  for (const std::string& o : kEscape) command += " --set " + o;
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const std::string err = test::read_file(dir_ / "stderr.txt");
+  EXPECT_EQ(err.rfind("numerical failure: particle_left_domain at step ", 0), 0u) << err;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "diagnostic.json"));
+}
+
+// A fixed rim: the held particles' reactions are external forces, and the momentum balance
+// p - p0 = external impulse holds to round-off once the waves have reached the rim (5.6 us).
+TEST_F(MacroApp, FixedRimReactionsCloseTheMomentumBalance) {
+  MacroRunArgs args;
+  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  args.overrides = {"support.rim=fixed", "run.end_time_s=2e-5"};
+  args.out = dir_;
+  args.quiet = true;
+  run_macro(args);
+  const nlohmann::json r = nlohmann::json::parse(test::read_file(dir_ / "result.json"));
+  const double impulse_z = r.at("momentum").at("external_impulse_N_s")[2].get<double>();
+  std::printf("fixed rim, 20 us: external impulse %.4e N s (M v0 = 0.9071), worst momentum balance error %.3e, "
+              "worst energy balance error %.3e\n",
+              impulse_z, r.at("momentum").at("worst_balance_error").get<double>(),
+              r.at("energy").at("worst_balance_error").get<double>());
+  EXPECT_LT(impulse_z, -1e-4);  // the rim holds the block back
+  EXPECT_LT(r.at("momentum").at("worst_balance_error").get<double>(), 1e-8);
+  EXPECT_LT(r.at("energy").at("worst_balance_error").get<double>(), 5e-3);
+}
+
+TEST(MacroCaseSetup, RimParticlesAreThoseWithinTheRimWidth) {
+  CaseSettings s;
+  s.target.shape = TargetSettings::Shape::Box;
+  s.target.box_size_m = {0.048, 0.048, 0.016};
+  s.target.box_spacing_m = 0.004;
+  s.support.fixed_rim = true;
+  s.support.rim_width_m = 0.004;
+  const ParticleBody body = make_target_body(s.target);
+  const Particles p = Particles::from_body(body, 2500.0, 2.0);
+  EXPECT_EQ(rim_particles(p, s).size(), (12u * 12u - 10u * 10u) * 4u);  // the outer ring of the 12 x 12 layers
+  s.support.fixed_rim = false;
+  EXPECT_TRUE(rim_particles(p, s).empty());
+
+  CaseSettings d;
+  d.target.shape = TargetSettings::Shape::Disc;
+  d.target.disc = DiscSpec{0.05, 0.01, 0.0, 0.005, 0.005, 0.0};
+  d.support.fixed_rim = true;
+  d.support.rim_width_m = 0.006;
+  const ParticleBody disc = make_target_body(d.target);
+  const Particles q = Particles::from_body(disc, 2500.0, 2.0);
+  std::size_t expected = 0;
+  for (std::size_t i = 0; i < q.n; ++i) expected += std::hypot(q.x[3 * i], q.x[3 * i + 1]) > 0.044 ? 1 : 0;
+  EXPECT_GT(expected, 0u);
+  EXPECT_EQ(rim_particles(q, d).size(), expected);
+}
+
+// --sdel is validated and accepted by laws that do not use it (elastic): the run goes on and succeeds.
+TEST_F(MacroApp, AValidSdelHandoffIsAcceptedByTheElasticLaw) {
+  MacroRunArgs args;
+  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  args.overrides = {"run.end_time_s=2e-6"};
+  args.sdel_path = std::string(UHPC_DATA_DIR) + "/sdel_paper.json";
+  args.out = dir_;
+  args.quiet = true;
+  run_macro(args);
+  const nlohmann::json r = nlohmann::json::parse(test::read_file(dir_ / "result.json"));
+  EXPECT_EQ(r.at("material_model"), "elastic");
+  EXPECT_GT(r.at("steps").get<int>(), 0);
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "fields.xdmf"));
+  EXPECT_TRUE(r.at("residual_velocity_m_s").is_null());  // still in flight: no residual velocity
+}
+
+}  // namespace
+}  // namespace uhpc::macro

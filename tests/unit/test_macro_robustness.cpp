@@ -1,0 +1,64 @@
+// The solver's robustness checks after every step (step_health.hpp): a non-finite state or a particle
+// leaving the domain box fails the step, the solver goes back to the state before it (the last good
+// state) and reports the failed attempt.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "bodies/generators.hpp"
+#include "solver/explicit_solver.hpp"
+
+namespace uhpc::macro {
+namespace {
+
+ExplicitSolver make_box(const SolverOptions& options, double vx) {
+  const ParticleBody body = box_body(0.04, 0.02, 0.02, 0.005);
+  ExplicitSolver solver(Particles::from_body(body, 2500.0, options.support_factor),
+                        make_material_set(ElasticMaterial(ElasticParams{2500.0, 20e9, 15e9}), body.size()), options);
+  set_initial_velocity(solver.particles(), Region{{-1, -1, -1}, {1, 1, 1}}, {vx, 0.0, 0.0});
+  solver.initialize();
+  return solver;
+}
+
+TEST(MacroRobustness, ANonFiniteVelocityFailsTheStepAndRestoresTheLastGoodState) {
+  ExplicitSolver s = make_box(SolverOptions{}, 1.0);
+  for (int k = 0; k < 3; ++k) ASSERT_TRUE(s.step());
+  const double t = s.time();
+  const auto steps = s.steps();
+  s.particles().v[3 * 7 + 1] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(s.step());
+  EXPECT_EQ(s.failure().kind, StepFailure::NonFinite);
+  EXPECT_STREQ(to_string(s.failure().kind), "non_finite_state");
+  EXPECT_EQ(s.time(), t);
+  EXPECT_EQ(s.steps(), steps);
+  EXPECT_EQ(s.failure().step, steps + 1);
+  EXPECT_GE(s.failure().particle, 0);
+}
+
+TEST(MacroRobustness, AParticleLeavingTheDomainFailsTheStep) {
+  SolverOptions o;
+  // The last particle centres are at x = 0.0375: 1 mm of room, crossed at 100 m/s in 10 us.
+  o.domain = Region{{-0.001, -0.001, -0.001}, {0.0385, 0.021, 0.021}};
+  ExplicitSolver s = make_box(o, 100.0);
+  int ok = 0;
+  while (s.step()) ++ok;
+  EXPECT_EQ(s.failure().kind, StepFailure::OutOfDomain);
+  const Particles& p = s.particles();
+  for (std::size_t i = 0; i < p.n; ++i) EXPECT_TRUE(o.domain->contains(p.x.data() + 3 * i)) << i;  // last good
+  EXPECT_GT(s.failure().x[0], 0.0385);
+  EXPECT_LT(s.time(), 1e-5);           // the body drifts rigidly at 100 m/s: the last good state is
+  EXPECT_GT(s.time() + s.failure().dt_s, 1e-5);  // the one before the crossing
+  EXPECT_GT(ok, 5);
+}
+
+TEST(MacroRobustness, DefaultDomainIsTheBodyGrownByItsExtent) {
+  ExplicitSolver s = make_box(SolverOptions{}, 0.0);
+  // Bounding box of the particles with their half spacing: [0, 0.04] x [0, 0.02]^2; extent 0.04.
+  EXPECT_NEAR(s.domain().lo[0], -0.04, 1e-12);
+  EXPECT_NEAR(s.domain().hi[0], 0.08, 1e-12);
+  EXPECT_NEAR(s.domain().hi[2], 0.06, 1e-12);
+}
+
+}  // namespace
+}  // namespace uhpc::macro
