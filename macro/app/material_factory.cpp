@@ -1,5 +1,9 @@
 #include "material_factory.hpp"
 
+#include <filesystem>
+
+#include "materials/afc_config.hpp"
+
 namespace uhpc::macro {
 
 namespace {
@@ -23,14 +27,35 @@ J2Params read_j2(const Config& b) {
   return p;
 }
 
+// A path in a case file is relative to that file, so shipped cases run from any directory.
+std::string relative_to(const Config& block, const std::string& path) {
+  if (std::filesystem::path(path).is_absolute()) return path;
+  return (std::filesystem::path(block.source()).parent_path() / path).string();
+}
+
+// {"model": "afc", "constants_file": "afc_uhpc.json", "sdel_file": "sdel_paper.json"}: the constants
+// (Table 6, with an optional "options" block) and the SDEL handoff; --sdel replaces sdel_file.
+AfcParams read_afc(const Config& block, const std::optional<SdelHandoff>& sdel) {
+  const std::string constants = relative_to(block, block.text("constants_file"));
+  const std::string sdel_file = relative_to(block, block.text("sdel_file"));
+  const SdelHandoff handoff = sdel ? *sdel : read_sdel_handoff(sdel_file);
+  const Config cfg = Config::load(constants);
+  AfcParams p = afc_params_from_config(cfg, handoff);
+  cfg.finish();
+  return p;
+}
+
 }  // namespace
 
-MaterialChoice make_material(const Config& block, std::size_t n, const std::optional<SdelHandoff>& /*sdel*/) {
-  const std::string model = block.choice("model", {"elastic", "j2"});
+MaterialChoice make_material(const Config& block, std::size_t n, const std::optional<SdelHandoff>& sdel) {
+  const std::string model = block.choice("model", {"elastic", "j2", "afc"});
   if (model == "elastic") {
     return {make_material_set(ElasticMaterial(read_elastic(block)), n), model, false};
   }
-  // model == "j2" (the choice above admits nothing else). Neither law uses the SDEL handoff.
+  if (model == "afc") {
+    return {make_material_set(AfcMaterial(read_afc(block, sdel)), n), model, true};
+  }
+  // model == "j2" (the choice above admits nothing else). Neither elastic nor J2 uses the SDEL.
   return {make_material_set(J2Material(read_j2(block)), n), model, false};
 }
 

@@ -2,8 +2,9 @@
 // The "material" block of a case -> the solver's MaterialSet. One branch per law:
 //   {"model": "elastic", "density_kg_m3", "bulk_modulus_Pa", "shear_modulus_Pa"}
 //   {"model": "j2", ... as elastic ..., "yield_stress_Pa", "hardening_modulus_Pa"}
-// Adding a law (the AFC concrete model) is one more name in kMaterialModels' choice and one more
-// branch in make_material: read its parameters from the block, take the SDEL handoff if it uses one.
+//   {"model": "afc", "constants_file": "afc_uhpc.json", "sdel_file": "sdel_paper.json"} (paths relative
+//     to the case file; --sdel replaces sdel_file)
+// Adding a law is one more name in the choice and one more branch in make_material.
 // The SDEL handoff (--sdel) is validated by the program before this is called; laws that do not use
 // it ignore it (the program says so in its log).
 #include <cstddef>

@@ -14,7 +14,7 @@ uhpc_bad_input_case(NAME macro_negative_mass
   STDERR "error: data/macro_elastic_block.json: key 'projectile.mass_kg': value -1 is out of range, must be > 0"
   COMMAND ${_macro} ${_macro_case} --set projectile.mass_kg=-1)
 uhpc_bad_input_case(NAME macro_unknown_material
-  STDERR "error: data/macro_elastic_block.json: key 'material.model': value 'foo' is not one of: elastic, j2"
+  STDERR "error: data/macro_elastic_block.json: key 'material.model': value 'foo' is not one of: elastic, j2, afc"
   COMMAND ${_macro} ${_macro_case} --set material.model=foo)
 uhpc_bad_input_case(NAME macro_j2_needs_yield_stress
   STDERR "error: data/macro_elastic_block.json: key 'material.yield_stress_Pa': required key is missing"
@@ -37,3 +37,6 @@ uhpc_bad_input_case(NAME macro_zero_output_interval
 uhpc_bad_input_case(NAME macro_missing_out
   STDERR "error: --out is required"
   COMMAND ${_macro} --config data/macro_elastic_block.json)
+uhpc_bad_input_case(NAME macro_afc_needs_constants_file
+  STDERR "error: data/macro_elastic_block.json: key 'material.constants_file': required key is missing"
+  COMMAND ${_macro} ${_macro_case} --set material.model=afc)
