@@ -1,26 +1,14 @@
 // AfcMaterial::update allocates nothing (it runs inside the solver's particle loop): counted through
 // the global operator new of this test program, over elastic, plastic, crushing and cracking steps,
 // with and without the tensile-stress degradation option.
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
 #include <gtest/gtest.h>
+
+#include "allocation_counter.hpp"
 
 #include "materials/afc.hpp"
 #include "materials/afc_config.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+using uhpc::test::g_allocations;
 
 namespace uhpc::macro {
 namespace {

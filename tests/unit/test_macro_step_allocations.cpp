@@ -1,26 +1,14 @@
 // The step loop of the macro solver allocates nothing once the neighbour counts have settled: every
 // buffer (neighbour lists, search workspace, shape tables, per-thread force buffers) keeps its memory.
 // Counted through the global operator new of this test program.
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
 #include <gtest/gtest.h>
+
+#include "allocation_counter.hpp"
 
 #include "bodies/generators.hpp"
 #include "solver/explicit_solver.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+using uhpc::test::g_allocations;
 
 namespace uhpc::macro {
 namespace {
