@@ -4,9 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "uhpc/parallel.hpp"
 
 namespace uhpc {
 
@@ -88,11 +86,7 @@ void build_rows(std::size_t n_queries, Visit&& visit, NeighbourList& out,
   const std::int64_t nq = static_cast<std::int64_t>(n_queries);
 #pragma omp parallel
   {
-#ifdef _OPENMP
-    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
-#else
-    const int threads = 1, t = 0;
-#endif
+    const int threads = team_size(), t = team_index();
 #pragma omp single
     if (blocks.size() < static_cast<std::size_t>(threads)) blocks.resize(threads);
     const std::int64_t first = nq * t / threads, last = nq * (t + 1) / threads;

@@ -1,13 +1,12 @@
 #include "solver/internal_force.hpp"
+
 #include "solver/parallel.hpp"
+#include "uhpc/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace uhpc::macro {
 
@@ -17,11 +16,7 @@ void InternalForce::compute(const ShapeCache& shapes, const double* stress, cons
   const std::int64_t nn = static_cast<std::int64_t>(n);
 #pragma omp parallel if (nn >= kParallelMinParticles)
   {
-#ifdef _OPENMP
-    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
-#else
-    const int threads = 1, t = 0;
-#endif
+    const int threads = team_size(), t = team_index();
 #pragma omp single
     {
       if (buffers_.size() < static_cast<std::size_t>(threads)) buffers_.resize(threads);
