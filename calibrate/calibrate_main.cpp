@@ -7,7 +7,7 @@
 //   uhpc-calibrate synthesize --sdel data/sdel_paper.json --out ensemble.h5
 //                  [--config data/synthetic_ensemble.json] [--noise 0.01] [--seed N] [--set key=value]
 //
-// The second form writes an ensemble file in the format uhpc-micro ensemble writes (ensemble_file.hpp)
+// The second form writes an ensemble file in the format uhpc-micro ensemble writes (uhpc/ensemble_file.hpp)
 // from a known SDEL, so the chain can be exercised and tested without microcell runs.
 #include <cstdio>
 #include <filesystem>
@@ -21,7 +21,7 @@
 
 #include "calibrate_config.hpp"
 #include "calibrate_report.hpp"
-#include "ensemble_file.hpp"
+#include "uhpc/ensemble_file.hpp"
 #include "ensemble_fit_data.hpp"
 #include "sdel_fit.hpp"
 #include "size_effect_fit.hpp"

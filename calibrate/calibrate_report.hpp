@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calibrate_config.hpp"
-#include "ensemble_file.hpp"
+#include "uhpc/ensemble_file.hpp"
 #include "sdel_fit.hpp"
 #include "size_effect_fit.hpp"
 #include "uhpc/provenance.hpp"

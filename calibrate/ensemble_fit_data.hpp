@@ -3,7 +3,7 @@
 // standard error of each mean damage value, std / sqrt(cells) (what the "spread" weighting divides by).
 #include <cmath>
 
-#include "ensemble_file.hpp"
+#include "uhpc/ensemble_file.hpp"
 #include "sdel_fit.hpp"
 
 namespace uhpc {

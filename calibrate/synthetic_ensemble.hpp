@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "ensemble_file.hpp"
+#include "uhpc/ensemble_file.hpp"
 #include "uhpc/sdel.hpp"
 
 namespace uhpc {

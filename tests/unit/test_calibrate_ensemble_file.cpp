@@ -1,4 +1,4 @@
-// The ensemble file (calibrate/ensemble_file.hpp): the contract between uhpc-micro ensemble and
+// The ensemble file (common/include/uhpc/ensemble_file.hpp): the contract between uhpc-micro ensemble and
 // uhpc-calibrate. Round trip, and one clear InputError per kind of bad file.
 #include <cmath>
 #include <functional>
@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "ensemble_file.hpp"
+#include "uhpc/ensemble_file.hpp"
 #include "synthetic_ensemble.hpp"
 #include "test_support.hpp"
 #include "uhpc/errors.hpp"

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "ensemble_file.hpp"
+#include "uhpc/ensemble_file.hpp"
 #include "ensemble_fit_data.hpp"
 #include "sdel_fit.hpp"
 #include "synthetic_ensemble.hpp"

@@ -1,4 +1,4 @@
-#include "ensemble_file.hpp"
+#include "uhpc/ensemble_file.hpp"
 
 #include <cmath>
 #include <stdexcept>

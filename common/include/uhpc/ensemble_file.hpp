@@ -1,5 +1,6 @@
 #pragma once
 // ensemble.h5: the contract between `uhpc-micro ensemble` (writer) and `uhpc-calibrate` (reader).
+// It lives in common/ so that both programs share this one implementation.
 // The layout is documented in calibrate/README.md; in short (n = sizes, m = strains, row-major):
 //   /sizes (n) "m", /strain (m) "1", /damage/mean, /damage/std (n x m) "1",
 //   /stress/mean, /stress/std (n x m) "Pa", /cells (n) int64 "1", /nominal_strength (n) "Pa",
