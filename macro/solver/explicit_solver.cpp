@@ -1,6 +1,7 @@
 #include "solver/explicit_solver.hpp"
 #include "solver/parallel.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -23,6 +24,8 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
     throw std::invalid_argument("ExplicitSolver: dt_collapse_fraction must be in [0, 1)");
   if (options_.max_step_repeats < 0) throw std::invalid_argument("ExplicitSolver: max_step_repeats must be >= 0");
   if (!(options_.domain_margin > 0)) throw std::invalid_argument("ExplicitSolver: domain_margin must be > 0");
+  if (!(options_.neighbour_skin >= 0)) throw std::invalid_argument("ExplicitSolver: neighbour_skin must be >= 0");
+  shapes_.skin = options_.neighbour_skin;
   f_ext_old_.assign(3 * p_.n, 0.0);
   f_contact_old_.assign(3 * p_.n, 0.0);
   if (p_.f_contact.size() != 3 * p_.n) p_.f_contact.assign(3 * p_.n, 0.0);
@@ -313,8 +316,33 @@ bool ExplicitSolver::step() {
   return true;
 }
 
+namespace {
+// Same-size copy, split over the threads for large arrays (memory bandwidth is per core here).
+void copy_same_size(const std::vector<double>& from, std::vector<double>& to) {
+  const std::int64_t n = static_cast<std::int64_t>(from.size());
+  constexpr std::int64_t kBlock = 8192;
+  const std::int64_t blocks = (n + kBlock - 1) / kBlock;
+#pragma omp parallel for schedule(static) if (n >= 3 * kParallelMinParticles)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const std::int64_t lo = b * kBlock, hi = std::min(n, lo + kBlock);
+    std::copy(from.data() + lo, from.data() + hi, to.data() + lo);
+  }
+}
+
+// The particle fields a step changes and the next step reads before it rewrites them. Not copied:
+// the constants of the step loop (mass, volume0, spacing, support) and the per-step scratch each
+// step recomputes before use (x_prev, x_mid, vel_grad, vel_grad_grad).
+void copy_evolving_state(const Particles& from, Particles& to) {
+  for (auto field : {&Particles::x, &Particles::v, &Particles::a, &Particles::f_int, &Particles::f_ext,
+                     &Particles::f_contact, &Particles::volume, &Particles::density, &Particles::stress,
+                     &Particles::bulk_q, &Particles::wave_speed, &Particles::stress_grad})
+    copy_same_size(from.*field, to.*field);
+}
+}  // namespace
+
 void ExplicitSolver::save_state() {
-  saved_.p = p_;
+  if (saved_.p.n != p_.n || saved_.p.x.size() != p_.x.size()) saved_.p = p_;  // sizes it (initialize())
+  else copy_evolving_state(p_, saved_.p);
   if (saved_.material) *saved_.material = material_; else saved_.material.emplace(material_);
   saved_.f_ext_old = f_ext_old_;
   saved_.f_contact_old = f_contact_old_;
@@ -329,7 +357,7 @@ void ExplicitSolver::save_state() {
 
 // The shape cache is not restored: every step rebuilds it before using it.
 void ExplicitSolver::restore_state() {
-  p_ = saved_.p;
+  copy_evolving_state(saved_.p, p_);
   material_ = *saved_.material;
   f_ext_old_ = saved_.f_ext_old;
   f_contact_old_ = saved_.f_contact_old;

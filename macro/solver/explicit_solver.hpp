@@ -2,7 +2,8 @@
 // The 3D explicit semi-Lagrangian RKPM solver core: one body of particles, one material, walls and
 // prescribed velocities. Each step (velocity Verlet, verlet.hpp):
 //   1. v += dt/2 a, constraints, x += dt v                                  (integrator)
-//   2. RK gradients at the mid-step configuration (x_n + x_n+1)/2 with fresh neighbour lists
+//   2. RK gradients at the mid-step configuration (x_n + x_n+1)/2 with exact neighbour lists (a
+//      cell-list search, or its Verlet-skin candidates filtered: SolverOptions::neighbour_skin)
 //      (StrainConfiguration::Midpoint) or at x_n+1 (End); L_I = sum_J v_J (x) grad Psi_J(x_I)
 //   3. constitutive update per particle (stress_update.hpp): rotation, law, volume, bulk viscosity,
 //      critical step
@@ -55,6 +56,10 @@ struct SolverOptions {
   BulkViscosity viscosity;     // {0, 0} switches it off
   Stabilization stabilization = Stabilization::Nsni;
   SecondGradientOptions second_gradients;  // NSNI strain gradients (quadratic implicit second derivatives)
+  // Verlet skin of the neighbour search, as a fraction of the smallest support radius (ShapeCache::skin):
+  // candidate lists are searched with the radii grown by it and reused, filtered exactly, until some
+  // particle has moved half the skin. Exact (the lists equal a fresh search); 0: search every rebuild.
+  double neighbour_skin = 0.1;
   // Step-collapse guard: repeat a step whose new stable step is below this fraction of the step taken
   // (0 switches the guard off; so does fixed_dt_s). With CFL 0.4 and 0.5 an accepted step was at most
   // 0.8 of the critical step of the configuration it produced.
@@ -139,7 +144,8 @@ class ExplicitSolver {
   std::int64_t steps_ = 0, repeats_ = 0, inverted_ = -1;
   bool initialized_ = false;
   FailureReport failure_;
-  // The last good state, saved at the start of every step (same-size copies: no allocation).
+  // The last good state, saved at the start of every step (same-size copies: no allocation). Of the
+  // particles only the fields a step changes and reads back are copied (explicit_solver.cpp).
   struct Saved {
     Particles p;
     std::optional<MaterialSet> material;

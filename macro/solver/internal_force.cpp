@@ -33,30 +33,35 @@ void InternalForce::compute(const ShapeCache& shapes, const double* stress, cons
       for (int d = 0; d < 3; ++d) s[4 * d] -= volume[L] * q;
       const std::int32_t* row = shapes.support.row(L);
       const std::int64_t b = shapes.support.begin(L), count = shapes.support.count(L);
+      if (!nsni) {
+        for (std::int64_t k = 0; k < count; ++k) {
+          const double* dpsi = shapes.grad.data() + 3 * (b + k);
+          double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
+          for (int r = 0; r < 3; ++r) fi[r] -= s[3 * r] * dpsi[0] + s[3 * r + 1] * dpsi[1] + s[3 * r + 2] * dpsi[2];
+        }
+        continue;
+      }
+      // tg[j][m] = M_L * sum over the pairs (d, k) with sym_index m of dsigma_jk/dx_d: Psi^(dk) is
+      // symmetric in (d, k), so the off-diagonal pairs add up.
+      const double moment = std::cbrt(volume[L] * volume[L] * volume[L] * volume[L] * volume[L]) / 12.0;
+      const double* sg = stress_grad + 27 * L;
+      double tg[3][6];
+      for (int j = 0; j < 3; ++j) {
+        for (int m = 0; m < 6; ++m) tg[j][m] = 0.0;
+        for (int d = 0; d < 3; ++d)
+          for (int c = 0; c < 3; ++c) tg[j][sym_index(d, c)] += moment * sg[9 * d + 3 * j + c];
+      }
+      // One pass over the row: each node appears once in it, so every buffer entry still receives the
+      // nodal-integration term and then the NSNI term of this L, as with two passes.
       for (std::int64_t k = 0; k < count; ++k) {
         const double* dpsi = shapes.grad.data() + 3 * (b + k);
+        const double* h2 = shapes.hess.data() + 6 * (b + k);
         double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
         for (int r = 0; r < 3; ++r) fi[r] -= s[3 * r] * dpsi[0] + s[3 * r + 1] * dpsi[1] + s[3 * r + 2] * dpsi[2];
-      }
-      if (nsni) {
-        // tg[j][m] = M_L * sum over the pairs (d, k) with sym_index m of dsigma_jk/dx_d: Psi^(dk) is
-        // symmetric in (d, k), so the off-diagonal pairs add up.
-        const double moment = std::cbrt(volume[L] * volume[L] * volume[L] * volume[L] * volume[L]) / 12.0;
-        const double* sg = stress_grad + 27 * L;
-        double tg[3][6];
         for (int j = 0; j < 3; ++j) {
-          for (int m = 0; m < 6; ++m) tg[j][m] = 0.0;
-          for (int d = 0; d < 3; ++d)
-            for (int c = 0; c < 3; ++c) tg[j][sym_index(d, c)] += moment * sg[9 * d + 3 * j + c];
-        }
-        for (std::int64_t k = 0; k < count; ++k) {
-          const double* h2 = shapes.hess.data() + 6 * (b + k);
-          double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
-          for (int j = 0; j < 3; ++j) {
-            double sum = 0.0;
-            for (int m = 0; m < 6; ++m) sum += tg[j][m] * h2[m];
-            fi[j] -= sum;
-          }
+          double sum = 0.0;
+          for (int m = 0; m < 6; ++m) sum += tg[j][m] * h2[m];
+          fi[j] -= sum;
         }
       }
     }

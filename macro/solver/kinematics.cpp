@@ -29,7 +29,9 @@ void velocity_gradient_gradient(const ShapeCache& shapes, const double* v, std::
   const std::int64_t nn = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static) if (nn >= kParallelMinParticles)
   for (std::int64_t i = 0; i < nn; ++i) {
-    double g[27] = {};
+    // t[a][m] = sum_J (v_J - v_I)_a Psi^(m)_J over the 6 symmetric pairs m; dv_a,c/dx_d = t[a][sym(d, c)]
+    // (the same sums as accumulating the 27 entries directly, a third of the work).
+    double t[3][6] = {};
     const double* vi = v + 3 * i;
     const std::int32_t* row = shapes.support.row(i);
     const std::int64_t b = shapes.support.begin(i), count = shapes.support.count(i);
@@ -37,13 +39,12 @@ void velocity_gradient_gradient(const ShapeCache& shapes, const double* v, std::
       const double* vj = v + 3 * static_cast<std::int64_t>(row[k]);
       const double* h2 = shapes.hess.data() + 6 * (b + k);
       const double dv[3] = {vj[0] - vi[0], vj[1] - vi[1], vj[2] - vi[2]};  // sum_J Psi^(db)_J = 0
-      for (int d = 0; d < 3; ++d)
-        for (int c = 0; c < 3; ++c) {
-          const double s = h2[sym_index(d, c)];
-          for (int a = 0; a < 3; ++a) g[9 * d + 3 * a + c] += dv[a] * s;
-        }
+      for (int a = 0; a < 3; ++a)
+        for (int m = 0; m < 6; ++m) t[a][m] += dv[a] * h2[m];
     }
-    for (int m = 0; m < 27; ++m) G[27 * i + m] = g[m];
+    for (int d = 0; d < 3; ++d)
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) G[27 * i + 9 * d + 3 * a + c] = t[a][sym_index(d, c)];
   }
 }
 

@@ -9,6 +9,9 @@
 
 namespace uhpc::macro {
 
+// A field that a step changes and a later step reads must also be listed in copy_evolving_state
+// (explicit_solver.cpp), which saves and restores the last good state; constants of the step loop and
+// per-step scratch are left out of that copy on purpose.
 struct Particles {
   std::size_t n = 0;
   std::vector<double> x;        // current position (3n), m

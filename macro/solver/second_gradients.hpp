@@ -14,16 +14,31 @@
 // `regularization` times the largest (the quasi-linear treatment of rk_shape, applied to the
 // quadratic block): the second derivatives of quadratics are then only approximated there, but
 // those of constant and linear fields stay exactly zero, so rigid motions never load the NSNI term.
+//
+// When to lift (`continuous_regularization`, default true): every eigenvalue below the floor is
+// lifted, wherever it occurs, so S^-1 is bounded by 1 / (regularization lambda_max) and is a
+// continuous function of the particle positions. The original criterion (false) lifted only when the
+// condition estimate of S fell below rcond_min = 1e-4, i.e. a point with lambda_min between 1e-4 and
+// 1e-2 of lambda_max kept the nearly singular S: its second derivatives grow like 1/lambda_min and
+// the NSNI stiffness M_L B_d^T C B_d like their square. A surface particle pushed 0.05 h inward at
+// support 2.0 h puts its neighbours in that band: the largest squared frequency of the body becomes
+// 413 times that of plain nodal integration (which sets the critical step), so no CFL is stable and
+// the run diverges (the "NSNI at 2.0 h" finding of macro/README.md;
+// tests/verification/test_macro_nsni_surface_load.cpp).
 #include <cstdint>
 
 #include "uhpc/kernels.hpp"
+#include "uhpc/rk_shape.hpp"
 
 namespace uhpc::macro {
 
 struct SecondGradientOptions {
   KernelType kernel = KernelType::CubicBSpline;
-  double rcond_min = 1e-4;       // below this reciprocal condition number of S: regularise
+  double rcond_min = 1e-4;       // original criterion only: below this rcond of S, regularise
   double regularization = 1e-2;  // floor of the lifted eigenvalues, relative to the largest
+  // true: lift every eigenvalue of S below the floor (continuous in the configuration; rcond_min unused).
+  // false: the original criterion, regularise only when rcond(S) < rcond_min (see the header).
+  bool continuous_regularization = true;
 };
 
 enum class SecondGradientPath : std::uint8_t { Full = 0, Regularized = 1, Empty = 2 };
@@ -32,6 +47,22 @@ enum class SecondGradientPath : std::uint8_t { Full = 0, Regularized = 1, Empty 
 // hess[6k + m] = Psi^(m)_k with m = xx, yy, zz, yz, xz, xy. Allocation-free.
 SecondGradientPath second_gradients(const SecondGradientOptions& options, const double* x, const double* nodes,
                                     const double* support, const std::int32_t* nbr, int n, double* hess);
+
+// The RK shape functions and first gradients (rk::evaluate<3>, linear basis) and the second
+// derivatives above in one pass: one kernel evaluation and one set of moments per neighbour (the
+// linear moment matrix is a block of the quadratic one). Same results as the two routines up to
+// round-off; points where rk_shape leaves its full path (quasi-linear, fallback, empty), other bases
+// or kernels, and more than 512 nodes go through the two routines themselves. Allocation-free.
+SecondGradientPath shape_and_second_gradients(const rk::Options& rk_options, const SecondGradientOptions& options,
+                                              const double* x, const double* nodes, const double* support,
+                                              const std::int32_t* nbr, int n, double* psi, double* grad,
+                                              double* hess, rk::PointResult& result);
+
+// rk::evaluate<3> for the linear basis, by the same code as above without the quadratic part (one
+// kernel pass, moments as dot products, explicit 3 x 3 inverse); the same results up to round-off, the
+// same fallbacks. Allocation-free.
+rk::PointResult shape_gradients(const rk::Options& rk_options, const double* x, const double* nodes,
+                                const double* support, const std::int32_t* nbr, int n, double* psi, double* grad);
 
 // Index of the symmetric pair (i, j) in the 6-vector above.
 constexpr int sym_index(int i, int j) {

@@ -2,6 +2,7 @@
 #include "solver/parallel.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace uhpc::macro {
@@ -16,7 +17,12 @@ void resize_with_headroom(std::vector<double>& v, std::size_t size) {
 
 void ShapeCache::rebuild(const rk::Options& options, const double* x, const double* support_radius, std::size_t n,
                          const SecondGradientOptions* second) {
-  nodes_covering<3>(x, n, x, support_radius, n, support, workspace);
+  if (skin > 0.0) {
+    find_with_skin(x, support_radius, n);
+  } else {
+    nodes_covering<3>(x, n, x, support_radius, n, support, workspace);
+    ++searches;
+  }
   const std::size_t entries = support.indices.size();
   // The search sizes its lists exactly; give them (and its per-thread buffers) headroom so that the
   // slow growth of neighbour counts does not reallocate on the next steps.
@@ -38,12 +44,85 @@ void ShapeCache::rebuild(const rk::Options& options, const double* x, const doub
 #pragma omp parallel for schedule(dynamic, 128) if (nq >= kParallelMinParticles)
   for (std::int64_t p = 0; p < nq; ++p) {
     const std::int64_t b = support.begin(p);
-    info[p] = rk::evaluate<3>(opt, x + 3 * p, x, support_radius, support.row(p), static_cast<int>(support.count(p)),
-                              psi.data() + b, grad.data() + 3 * b);
-    if (second)
-      hess_path[p] = second_gradients(*second, x + 3 * p, x, support_radius, support.row(p),
-                                      static_cast<int>(support.count(p)), hess.data() + 6 * b);
+    if (second) {
+      hess_path[p] = shape_and_second_gradients(opt, *second, x + 3 * p, x, support_radius, support.row(p),
+                                                static_cast<int>(support.count(p)), psi.data() + b,
+                                                grad.data() + 3 * b, hess.data() + 6 * b, info[p]);
+    } else {
+      info[p] = shape_gradients(opt, x + 3 * p, x, support_radius, support.row(p), static_cast<int>(support.count(p)),
+                                psi.data() + b, grad.data() + 3 * b);
+    }
   }
+}
+
+void ShapeCache::find_with_skin(const double* x, const double* support_radius, std::size_t n) {
+  const std::int64_t nq = static_cast<std::int64_t>(n);
+  bool valid = candidate_x.size() == 3 * n && candidates.size() == n;
+  double s = 0.0;
+  if (valid) {
+    for (std::size_t i = 0; i < n && valid; ++i) valid = candidate_support[i] == support_radius[i];
+  }
+  if (n > 0) {
+    double a_min = support_radius[0];
+    for (std::size_t i = 1; i < n; ++i) a_min = std::min(a_min, support_radius[i]);
+    s = skin * a_min;
+  }
+  if (valid) {
+    double moved2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : moved2) if (nq >= kParallelMinParticles)
+    for (std::int64_t i = 0; i < nq; ++i) {
+      double d2 = 0.0;
+      for (int d = 0; d < 3; ++d) d2 += (x[3 * i + d] - candidate_x[3 * i + d]) * (x[3 * i + d] - candidate_x[3 * i + d]);
+      if (!(d2 < HUGE_VAL)) d2 = HUGE_VAL;  // a non-finite position forces a search (which rejects it)
+      moved2 = std::max(moved2, d2);
+    }
+    // |x_L - x_J| >= |x0_L - x0_J| - 2 max|x - x0|: every J covering x_L was a candidate.
+    valid = 4.0 * moved2 <= s * s;
+  }
+  if (!valid) {
+    inflated_support.resize(n);
+    for (std::size_t i = 0; i < n; ++i) inflated_support[i] = support_radius[i] + s;
+    nodes_covering<3>(x, n, x, inflated_support.data(), n, candidates, workspace);
+    candidate_x.assign(x, x + 3 * n);
+    candidate_support.assign(support_radius, support_radius + n);
+    const std::size_t entries = candidates.indices.size();
+    if (candidates.indices.capacity() < entries + entries / 10) candidates.indices.reserve(entries + entries / 4);
+    for (auto& block : workspace.blocks)
+      if (block.capacity() < block.size() + block.size() / 10) block.reserve(block.size() + block.size() / 4);
+    ++searches;
+  } else {
+    ++reuses;
+  }
+  // Filter each candidate row into `filtered` (same offsets), then compact into `support`.
+  const std::size_t centries = candidates.indices.size();
+  if (filtered.capacity() < centries) filtered.reserve(centries + centries / 4);
+  filtered.resize(centries);
+  support.offsets.resize(n + 1);
+  support.offsets[0] = 0;
+#pragma omp parallel for schedule(static) if (nq >= kParallelMinParticles)
+  for (std::int64_t i = 0; i < nq; ++i) {
+    const double* xi = x + 3 * i;
+    const std::int32_t* row = candidates.row(i);
+    const std::int64_t count = candidates.count(i);
+    std::int32_t* out = filtered.data() + candidates.begin(i);
+    std::int64_t kept = 0;
+    for (std::int64_t k = 0; k < count; ++k) {
+      const std::int32_t j = row[k];
+      const double* xj = x + 3 * static_cast<std::int64_t>(j);
+      double d2 = 0.0;
+      for (int d = 0; d < 3; ++d) d2 += (xi[d] - xj[d]) * (xi[d] - xj[d]);
+      if (d2 < support_radius[j] * support_radius[j]) out[kept++] = j;
+    }
+    support.offsets[i + 1] = kept;
+  }
+  for (std::size_t i = 0; i < n; ++i) support.offsets[i + 1] += support.offsets[i];
+  const std::size_t entries = static_cast<std::size_t>(support.offsets[n]);
+  if (support.indices.capacity() < entries) support.indices.reserve(entries + entries / 4);
+  support.indices.resize(entries);
+#pragma omp parallel for schedule(static) if (nq >= kParallelMinParticles)
+  for (std::int64_t i = 0; i < nq; ++i)
+    std::copy(filtered.data() + candidates.begin(i), filtered.data() + candidates.begin(i) + support.count(i),
+              support.indices.data() + support.begin(i));
 }
 
 std::size_t ShapeCache::count(rk::Path path) const {

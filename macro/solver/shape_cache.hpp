@@ -2,7 +2,10 @@
 // RK shape-function gradients of every particle at every particle, rebuilt in a given configuration
 // (semi-Lagrangian: the current one), reusing all memory between steps. common's build_shape_table
 // returns a fresh table each call; this keeps the lists, the values and the search workspace, so once
-// the neighbour counts have settled a rebuild allocates nothing.
+// the neighbour counts have settled a rebuild allocates nothing. With second derivatives (NSNI) the
+// shape functions, first and second gradients come from one kernel pass and one set of moments per
+// point (shape_and_second_gradients); without, from the linear-only version of the same code
+// (shape_gradients). Both equal rk::evaluate<3> (+ second_gradients) to round-off.
 #include <cstddef>
 #include <vector>
 
@@ -20,12 +23,22 @@ struct ShapeCache {
   std::vector<double> hess;                      // NSNI: Psi^(ij)_J(x_L), 6 per entry (second_gradients.hpp)
   std::vector<SecondGradientPath> hess_path;     // one per point
   NeighbourWorkspace<3> workspace;
+  // Verlet skin (exact): > 0 keeps candidate lists searched with radii a_J + s, s = skin * min_J a_J,
+  // and only filters them (|x_L - x_J| < a_J, the search's own test, in the same ascending order) while
+  // no point has moved more than s/2 from where the candidates were searched: the lists are then
+  // identical to a fresh search. 0: a fresh cell-list search at every rebuild.
+  double skin = 0.0;
+  NeighbourList candidates;
+  std::vector<double> candidate_x, candidate_support, inflated_support;
+  std::vector<std::int32_t> filtered;
+  std::size_t searches = 0, reuses = 0;  // rebuilds that searched / that reused the candidates
 
   // Rebuilds at the n points `x` (3n), which are also the nodes, with support radii `support`; with
   // `second` also the implicit second derivatives on the same lists.
   void rebuild(const rk::Options& options, const double* x, const double* support, std::size_t n,
                const SecondGradientOptions* second = nullptr);
   std::size_t count(rk::Path path) const;
+  void find_with_skin(const double* x, const double* support_radius, std::size_t n);  // fills `support`
   std::size_t count(SecondGradientPath path) const;
   bool has_second_gradients() const { return !hess.empty(); }
 };

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "bodies/generators.hpp"
 #include "solver/particles.hpp"
+#include "solver/second_gradients.hpp"
 #include "solver/shape_cache.hpp"
 
 namespace uhpc::macro {
@@ -63,6 +65,31 @@ TEST(MacroSecondGradients, QuadraticsExactInsideLinearsZeroEverywhere) {
   EXPECT_GT(full, p.n / 5);
   EXPECT_LT(worst_quadratic, 1e-10);
   EXPECT_LT(worst_linear, 1e-12);
+}
+
+// Fragments: a particle left with one to three points in its support, or with points that a linear
+// field fits exactly, has no second derivatives (zeros, path Empty), never NaN or round-off blown up
+// to 1/(eps h^2) (found on the paper's shots, where ejecta particles stopped the run).
+TEST(MacroSecondGradients, FragmentsGetNoneRatherThanNaN) {
+  const SecondGradientOptions options;
+  for (double r : {3e-3, 5e-3, 7.2e-3, 7.499e-3}) {  // support 7.5 mm
+    for (int k = 0; k <= 3; ++k) {
+      std::vector<double> nodes = {0.0, 0.0, 0.0};
+      for (int j = 0; j < k; ++j) {
+        const double th = 2.1 * j + 0.3, ph = 0.7 * j + 0.2;
+        nodes.insert(nodes.end(), {r * std::sin(ph) * std::cos(th), r * std::sin(ph) * std::sin(th), r * std::cos(ph)});
+      }
+      const int n = k + 1;
+      std::vector<double> support(static_cast<std::size_t>(n), 7.5e-3);
+      std::vector<std::int32_t> nbr(static_cast<std::size_t>(n));
+      for (int j = 0; j < n; ++j) nbr[static_cast<std::size_t>(j)] = j;
+      std::vector<double> hess(6 * static_cast<std::size_t>(n), 1.0);
+      EXPECT_EQ(second_gradients(options, nodes.data(), nodes.data(), support.data(), nbr.data(), n, hess.data()),
+                SecondGradientPath::Empty)
+          << "r " << r << ", " << k << " neighbours";
+      for (double v : hess) EXPECT_EQ(v, 0.0);
+    }
+  }
 }
 
 }  // namespace
