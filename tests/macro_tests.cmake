@@ -20,3 +20,4 @@ add_dependencies(unit_test_macro_app uhpc-macro)  # the exit-code test runs the 
 uhpc_add_test(verification verification/test_macro_nsni_surface_load.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_fused_shapes.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_neighbour_skin.cpp uhpc_macro_solver)
+uhpc_add_test(unit unit/test_macro_nsni_return.cpp uhpc_macro_solver)

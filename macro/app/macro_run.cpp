@@ -135,6 +135,7 @@ void run_macro(const MacroRunArgs& args) {
     balance.update(solver);
     if (solver.steps() % settings.run.output_interval_steps == 0) {
       fields.write(solver);
+      history.save(args.out / "history.csv");  // a killed run keeps its history up to here
       spdlog::info("step {}, t = {:.3f} us, {:.1f} steps/s, sphere z = {:.3f} mm, v_z = {:.2f} m/s, {} in contact",
                    solver.steps(), solver.time() * 1e6, solver.steps() / elapsed(), solver.sphere().x[2] * 1e3,
                    solver.sphere().v[2], solver.contact().particles_in_contact);

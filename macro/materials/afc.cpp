@@ -107,7 +107,10 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   const double S = P_uncut < 0.0 ? afc_strength_tension(P, st.d_minus, st.d_plus, F, p_)
                                  : afc_strength_compression(P, st.d_minus, F, p_);
   double dep = 0.0;
+  st.deviatoric_return = 1.0;
+  st.at_tensile_cutoff = P > P_uncut;
   if (q_trial > S) {
+    st.deviatoric_return = S / q_trial;
     dep = (q_trial - S) / (3.0 * G);
     s *= S / q_trial;
     st.plastic_strain += dep;
@@ -140,14 +143,15 @@ double AfcMaterial::wave_speed(const State& state, double density_ratio) const {
 
 Moduli AfcMaterial::moduli(const State& state) const {
   const double slope = std::max(hydro_.unloading_modulus(state.mu_max), hydro_.slope(state.mu, state.mu_max));
-  return {(1.0 + state.mu) * slope, p_.shear_modulus_Pa};
+  // Along the deviator 0: S depends on P, d- and the rate, not on the plastic flow itself (its change
+  // with the pressure gradient is neglected).
+  return {(1.0 + state.mu) * slope, p_.shear_modulus_Pa, state.deviatoric_return, 0.0, state.at_tensile_cutoff};
 }
 
 void AfcMaterial::output_values(const State& state, double* out) const {
   out[0] = state.d_plus;
   out[1] = state.d_minus;
   out[2] = state.plastic_strain;
-  out[3] = pressure_of(state.stress);
 }
 
 }  // namespace uhpc::macro

@@ -39,6 +39,8 @@ class AfcMaterial {
     double plastic_strain = 0.0;   // equivalent (deviatoric) plastic strain
     double dissipated = 0.0;       // J per unit reference volume: deviatoric plastic work + crushing
     double tension_factor = 1.0;   // (1 - d+) applied to `stress` by degrade_tensile_stress, else 1
+    double deviatoric_return = 1.0;  // S / q_trial of the last step's radial return (1: elastic step)
+    bool at_tensile_cutoff = false;  // the last step's pressure was held at -Tmax (1 - d+)
   };
 
   // Throws std::invalid_argument for inconsistent constants (non-positive moduli, lengths, C1 <= C2,
@@ -58,7 +60,7 @@ class AfcMaterial {
 
   // Per-particle output fields, one value each, in this order.
   static std::vector<std::string> output_fields() {
-    return {"damage_tension", "damage_compression", "plastic_strain", "pressure_Pa"};
+    return {"damage_tension", "damage_compression", "plastic_strain"};  // pressure: the solver writes it
   }
   void output_values(const State& state, double* out) const;
 

@@ -20,10 +20,12 @@ void J2Material::update(State& state, const MaterialStep& step) const {
   const double q_trial = std::sqrt(1.5 * s_trial.cwiseProduct(s_trial).sum());
   const double f = q_trial - yield_stress(state.plastic_strain);
   Mat3 s = s_trial;
+  state.deviatoric_return = 1.0;
   if (f > 0.0) {
     // Radial return: with linear hardening the consistency condition is linear in d eps_p.
     const double dep = f / (3.0 * G + H);
-    s *= 1.0 - 3.0 * G * dep / q_trial;
+    state.deviatoric_return = 1.0 - 3.0 * G * dep / q_trial;
+    s *= state.deviatoric_return;
     const double ep0 = state.plastic_strain, ep1 = ep0 + dep;
     state.plastic_work += p_.yield_stress_Pa * dep + 0.5 * H * (ep1 * ep1 - ep0 * ep0);
     state.plastic_strain = ep1;

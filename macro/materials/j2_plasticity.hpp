@@ -23,6 +23,7 @@ class J2Material {
     Mat3 stress = Mat3::Zero();
     double plastic_strain = 0.0;  // equivalent plastic strain
     double plastic_work = 0.0;    // integral of sigma_y d eps_p, J per unit volume
+    double deviatoric_return = 1.0;  // sigma_y / q_trial of the last step (1: elastic step)
   };
 
   // Throws std::invalid_argument for non-positive density, moduli or yield stress, or negative H.
@@ -31,8 +32,12 @@ class J2Material {
   void update(State& state, const MaterialStep& step) const;
   double wave_speed(const State& state, double density_ratio) const;
   double reference_density() const { return p_.density_kg_m3; }
-  // The elastic moduli: they bound the elastic-plastic tangent, which keeps the NSNI term stabilising.
-  Moduli moduli(const State&) const { return {p_.bulk_modulus_Pa, p_.shear_modulus_Pa}; }
+  // The elastic moduli and the last return (linearised radial return with linear hardening: the
+  // component along the deviator follows the yield stress by H / (3G + H)).
+  Moduli moduli(const State& state) const {
+    return {p_.bulk_modulus_Pa, p_.shear_modulus_Pa, state.deviatoric_return,
+            p_.hardening_modulus_Pa / (3.0 * p_.shear_modulus_Pa + p_.hardening_modulus_Pa), false};
+  }
   double dissipated_energy(const State& state) const { return state.plastic_work; }
   double yield_stress(double plastic_strain) const {
     return p_.yield_stress_Pa + p_.hardening_modulus_Pa * plastic_strain;

@@ -23,6 +23,15 @@ struct MaterialStep {
 struct Moduli {
   double bulk_Pa = 0.0;
   double shear_Pa = 0.0;
+  // What the law's last return mapping did to the stress, so that the NSNI stress gradient (the
+  // stress variation across the particle) is returned with it (solver/nsni_gradient_return.hpp): the
+  // radial-return factor S / q_trial of the deviator (1 for an elastic step, 0 when no deviatoric
+  // stress is admissible), the fraction of a change along the current deviator that the strength
+  // follows (hardening: H / (3G + H); 0 for a strength that does not grow with plastic flow), and
+  // whether the pressure sits on a fixed limit (tensile cutoff).
+  double deviatoric_return = 1.0;
+  double along_deviator_return = 0.0;
+  bool pressure_fixed = false;
 };
 
 inline double pressure_of(const Mat3& stress) { return -stress.trace() / 3.0; }  // > 0 in compression

@@ -9,8 +9,9 @@
 //   V <- V exp(tr D dt) (exactly reversible too), rho = m / V;
 //   bulk viscosity q and the particle's critical step from the new wave speed.
 // NSNI (when Particles::stress_grad is sized): each direction's stabilization stress gradient is
-// rotated the same way and advanced with the law's isotropic moduli, dsigma_,d = C : sym(L_,d) dt, its
-// power M sigma_,d : D_,d V-weighted like the stress power (M = V^(5/3) / 12).
+// rotated the same way, advanced with the law's isotropic moduli, dsigma_,d = C : sym(L_,d) dt, and
+// returned with the stress by the law's return mapping (nsni_gradient_return.hpp); its power
+// M sigma_,d : D_,d V-weighted like the stress power (M = V^(5/3) / 12).
 // Stress power is integrated with the trapezoid rule in the co-rotated frame, 0.5 (s_a + s_b) : D dt V_mid,
 // which is exact for a linear law: the internal energy of an elastic body is then its strain energy.
 #include <algorithm>
@@ -23,6 +24,7 @@
 #include "materials/material_step.hpp"
 #include "solver/parallel.hpp"
 #include "solver/bulk_viscosity.hpp"
+#include "solver/nsni_gradient_return.hpp"
 #include "solver/particles.hpp"
 
 namespace uhpc::macro {
@@ -65,7 +67,8 @@ StressUpdateSums update_stresses(Block& block, Particles& p, double dt, const Bu
     step.spacing_m = p.spacing[i];
     block.law.update(state, step);
     work += 0.5 * (s_a + state.stress).cwiseProduct(D).sum() * dt * v_mid;
-    state.stress = R * state.stress * R.transpose();
+    const Mat3 s_b = state.stress;  // the law's result, in the frame of the NSNI gradients below
+    state.stress = R * s_b * R.transpose();
     Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.stress.data() + 9 * i) = state.stress;
     if (nsni) {
       const Moduli mod = block.law.moduli(state);
@@ -76,7 +79,8 @@ StressUpdateSums update_stresses(Block& block, Particles& p, double dt, const Bu
         Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> sg(p.stress_grad.data() + 27 * i + 9 * d);
         const Mat3 Dd = 0.5 * (G + G.transpose());
         const Mat3 g_a = R * sg * R.transpose();
-        const Mat3 g_b = g_a + (lambda * Dd.trace() * I + 2.0 * mod.shear_Pa * Dd) * dt;
+        Mat3 g_b = g_a + (lambda * Dd.trace() * I + 2.0 * mod.shear_Pa * Dd) * dt;
+        if (mod.deviatoric_return < 1.0 || mod.pressure_fixed) return_stress_gradient(g_b, s_b, mod);
         stab += moment * 0.5 * (g_a + g_b).cwiseProduct(Dd).sum() * dt;
         sg = R * g_b * R.transpose();
       }
