@@ -19,5 +19,7 @@ uhpc_add_test(unit unit/test_macro_app.cpp uhpc_macro_app)
 add_dependencies(unit_test_macro_app uhpc-macro)  # the exit-code test runs the program
 uhpc_add_test(verification verification/test_macro_nsni_surface_load.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_fused_shapes.cpp uhpc_macro_solver)
-uhpc_add_test(unit unit/test_macro_neighbour_skin.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_nsni_return.cpp uhpc_macro_solver)
+uhpc_add_test(unit unit/test_macro_neighbour_skin.cpp uhpc_macro_solver)
+# uhpc-compare-shots (issue 7): the comparison with Tables 5 and 8 and the spread of one shot.
+uhpc_add_test(unit unit/test_macro_shot_comparison.cpp uhpc_macro_shots)

@@ -40,3 +40,41 @@ uhpc_bad_input_case(NAME macro_missing_out
 uhpc_bad_input_case(NAME macro_afc_needs_constants_file
   STDERR "error: data/macro_elastic_block.json: key 'material.constants_file': required key is missing"
   COMMAND ${_macro} ${_macro_case} --set material.model=afc)
+
+# --- uhpc-compare-shots (issue 7) on hand-written result.json files (not runs) ---
+set(_cmp $<TARGET_FILE:uhpc-compare-shots>)
+set(_cmp_tables --experiments data/table5_ballistic_experiments.csv --paper data/table8_paper_simulations.csv
+                --projectile data/projectile.json)
+set(_cmp_dir tests/regression/compare_shots)
+uhpc_regression_case(NAME compare_shots OUTPUT comparison.json
+  COMMAND ${_cmp} ${_cmp_tables} --results ${_cmp_dir}/v1112 ${_cmp_dir}/v610 ${_cmp_dir}/v903 ${_cmp_dir}/v689/
+          ${_cmp_dir}/v992/result.json ${_cmp_dir}/v613 ${_cmp_dir}/v817)
+set(_cmp_spread tests/regression/compare_shots_spread)
+uhpc_regression_case(NAME compare_shots_spread OUTPUT spread.json
+  COMMAND ${_cmp} --spread --reference graded --results ${_cmp_spread}/uniform_3.0mm ${_cmp_spread}/graded
+          ${_cmp_spread}/uniform_4.5mm)
+set(_cmp_six ${_cmp_dir}/v610 ${_cmp_dir}/v613 ${_cmp_dir}/v689 ${_cmp_dir}/v817 ${_cmp_dir}/v903 ${_cmp_dir}/v992)
+uhpc_bad_input_case(NAME compare_shots_missing_shot
+  STDERR "error: data/table5_ballistic_experiments.csv: row 7 (impact velocity 1112 m/s) has no shot among the 6 result(s) given (within 1 m/s)"
+  COMMAND ${_cmp} ${_cmp_tables} --results ${_cmp_six} --out ${UHPC_REGRESSION_OUT}/bad)
+uhpc_bad_input_case(NAME compare_shots_unmatched_velocity
+  STDERR "error: tests/regression/compare_shots_bad/v700/result.json: impact velocity 700 m/s matches no experiment of data/table5_ballistic_experiments.csv (within 1 m/s)"
+  COMMAND ${_cmp} ${_cmp_tables} --results ${_cmp_six} tests/regression/compare_shots_bad/v700 --out ${UHPC_REGRESSION_OUT}/bad)
+uhpc_bad_input_case(NAME compare_shots_twice_the_same_shot
+  STDERR "error: tests/regression/compare_shots/v610/result.json: impact velocity 610 m/s pairs with the 610 m/s experiment that tests/regression/compare_shots/v610/result.json already pairs with"
+  COMMAND ${_cmp} ${_cmp_tables} --results ${_cmp_six} ${_cmp_dir}/v610 --out ${UHPC_REGRESSION_OUT}/bad)
+uhpc_bad_input_case(NAME compare_shots_failed_run
+  STDERR "error: tests/regression/compare_shots_bad/failed/result.json: missing: the run failed (see tests/regression/compare_shots_bad/failed/diagnostic.json)"
+  COMMAND ${_cmp} ${_cmp_tables} --results ${_cmp_six} tests/regression/compare_shots_bad/failed --out ${UHPC_REGRESSION_OUT}/bad)
+uhpc_bad_input_case(NAME compare_shots_missing_run
+  STDERR "error: tests/regression/compare_shots_bad/nothere/result.json: cannot open file (No such file or directory)"
+  COMMAND ${_cmp} ${_cmp_tables} --results tests/regression/compare_shots_bad/nothere --out ${UHPC_REGRESSION_OUT}/bad)
+uhpc_bad_input_case(NAME compare_shots_result_without_energy_balance
+  STDERR "error: tests/regression/compare_shots_bad/no_energy_balance/result.json: key 'energy.balance_error': required key is missing"
+  COMMAND ${_cmp} ${_cmp_tables} --results tests/regression/compare_shots_bad/no_energy_balance --out ${UHPC_REGRESSION_OUT}/bad)
+uhpc_bad_input_case(NAME compare_shots_spread_mixed_shots
+  STDERR "error: tests/regression/compare_shots/v610/result.json: impact velocity 610 m/s differs from the reference run's 817 m/s (tests/regression/compare_shots_spread/graded/result.json): a spread compares runs of one shot"
+  COMMAND ${_cmp} --spread --results ${_cmp_spread}/graded ${_cmp_dir}/v610 --out ${UHPC_REGRESSION_OUT}/bad)
+uhpc_bad_input_case(NAME compare_shots_missing_out
+  STDERR "error: --out is required"
+  COMMAND ${_cmp} --results ${_cmp_dir}/v610)
