@@ -64,7 +64,10 @@ void ImpactTracker::update(const ExplicitSolver& s) {
   if (finished()) return;
   const RigidSphere& sp = s.sphere();
   const bool free = s.contact().particles_in_contact == 0;
-  if (free && sp.x[2] - sp.radius_m > thickness_m && sp.v[2] > 0) {
+  // Perforated once the sphere's centre has crossed the exit face and no particle touches it: from
+  // there on it flies free (its rear needs another radius of travel, up to 25 us at the lowest
+  // residual speeds, in which nothing changes its velocity).
+  if (free && sp.x[2] > thickness_m && sp.v[2] > 0) {
     perforated = true;
   } else if (free && sp.x[2] + sp.radius_m < 0.0 && sp.v[2] < 0) {
     rebounded = true;
