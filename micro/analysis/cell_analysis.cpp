@@ -1,0 +1,478 @@
+#include "cell_analysis.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <unordered_map>
+
+#include <Eigen/UmfPackSupport>
+#include <fmt/format.h>
+
+#include "cohesive_assembly.hpp"
+#include "uniaxial_cell.hpp"
+
+namespace uhpc::micro {
+
+namespace {
+
+// One crack geometry: the enriched model and its system (the system refers to the model).
+struct Stage {
+  std::unique_ptr<EnrichedModel> em;
+  std::unique_ptr<FractureSystem> sys;
+};
+
+enum class Hold { Lambda, Opening };
+
+struct NewtonResult {
+  bool ok = false;
+  int iterations = 0;
+  std::string why;
+};
+
+class Analysis {
+ public:
+  Analysis(const CellGeometry& cell, const CellDiscretization& mesh, const CellMaterial& material,
+           const CellAnalysisOptions& o)
+      : cell_(cell), mesh_(mesh), o_(o) {
+    law_.tensile_strength_Pa = material.tensile_strength_Pa;
+    law_.fracture_energy_J_m2 = material.fracture_energy_J_m2;
+    law_.activation_ratio = o.activation_ratio;
+    law_.contact_penalty_ratio = o.contact_penalty_ratio;
+    law_.mode = o.mode;
+    elastic_ = material.elastic;
+    axis_ = cell.load == LoadAxis::X ? 0 : 1;
+    far_ = axis_ == 0 ? BoundaryPart::Right : BoundaryPart::Top;
+    unit_ = uniaxial_problem(cell.side_m, cell.load, 1.0 / cell.side_m, elastic_, o.nitsche_factor);
+    for (const PointConstraint& c : unit_.points) constraint_points_.push_back(c.x_m);
+    base_ = build_rk_galerkin_model(mesh, o.rk);
+    cracks_ = cracks_from_seeds(cell, mesh, o.growth);
+    history_.resize(cracks_.size());
+  }
+
+  CellResponse run(const FractureObserver& observer);
+  const std::vector<Crack>& cracks() const { return cracks_; }
+
+ private:
+  const CellGeometry& cell_;
+  const CellDiscretization& mesh_;
+  const CellAnalysisOptions& o_;
+  CohesiveLaw law_;
+  PlaneStrain elastic_;
+  int axis_ = 0;
+  BoundaryPart far_ = BoundaryPart::Right;
+  ElasticProblem unit_;
+  std::vector<std::array<double, 2>> constraint_points_;
+  RkGalerkinModel base_;
+  std::vector<Crack> cracks_;
+  std::vector<std::vector<CohesiveHistory>> history_;  // per crack: segment x Gauss point
+  Stage stage_;
+  long stage_id_ = 0;
+  std::unique_ptr<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>> lu_;
+  long lu_key_ = -1;
+  Eigen::VectorXd d_;
+  double lambda_ = 0.0;
+  double scale_ = 1.0;  // residual scale
+  CohesiveEvaluation eval_;
+  // Path bookkeeping.
+  double work_ = 0.0, last_force_ = 0.0, last_lambda_ = 0.0, peak_ = 0.0;
+
+  int gauss() const { return o_.enrichment.crack_points; }
+
+  void build_stage() {
+    Stage s;
+    s.em = std::make_unique<EnrichedModel>(build_enriched_model(base_, mesh_, cracks_, constraint_points_, o_.enrichment));
+    s.sys = std::make_unique<FractureSystem>(base_, *s.em, unit_, far_, axis_);
+    // Carry d over: standard coefficients as they are, enriched ones by (crack, node); new ones 0.
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.em->dof_count()));
+    if (stage_.em) {
+      const std::size_t n = base_.node_count();
+      d.head(static_cast<Eigen::Index>(2 * n)) = d_.head(static_cast<Eigen::Index>(2 * n));
+      std::unordered_map<std::int64_t, std::size_t> old;
+      for (std::size_t k = 0; k < stage_.em->enriched_node.size(); ++k)
+        old[static_cast<std::int64_t>(stage_.em->enriched_crack[k]) * static_cast<std::int64_t>(n) + stage_.em->enriched_node[k]] = k;
+      for (std::size_t k = 0; k < s.em->enriched_node.size(); ++k) {
+        const auto it = old.find(static_cast<std::int64_t>(s.em->enriched_crack[k]) * static_cast<std::int64_t>(n) + s.em->enriched_node[k]);
+        if (it == old.end()) continue;
+        d.segment(static_cast<Eigen::Index>(2 * (n + k)), 2) = d_.segment(static_cast<Eigen::Index>(2 * (n + it->second)), 2);
+      }
+    }
+    d_ = d;
+    stage_ = std::move(s);
+    ++stage_id_;
+    for (std::size_t c = 0; c < cracks_.size(); ++c)
+      history_[c].resize(cracks_[c].active * static_cast<std::size_t>(gauss()), CohesiveHistory{law_.activation_opening(), 0.0, 0.0});
+  }
+
+  std::vector<CohesiveHistory> flat_history() const {
+    std::vector<CohesiveHistory> h;
+    h.reserve(stage_.em->cohesive.size());
+    for (const CohesivePoint& p : stage_.em->cohesive) h.push_back(history_[p.crack][p.segment * gauss() + p.gauss]);
+    return h;
+  }
+  void commit(const std::vector<CohesiveHistory>& trial) {
+    for (std::size_t i = 0; i < trial.size(); ++i) {
+      const CohesivePoint& p = stage_.em->cohesive[i];
+      history_[p.crack][p.segment * gauss() + p.gauss] = trial[i];
+    }
+  }
+
+  bool softening() const {
+    for (const auto& h : history_)
+      for (const CohesiveHistory& x : h)
+        if (x.kappa > law_.activation_opening() * (1.0 + 1e-9)) return true;
+    return false;
+  }
+
+  double active_length() const {
+    double l = 0.0;
+    for (const Crack& c : cracks_) l += c.active_length();
+    return l;
+  }
+
+  NewtonResult newton(Hold hold, double target, std::vector<CohesiveHistory>& trial);
+  struct Snapshot {
+    std::vector<Crack> cracks;
+    std::vector<std::vector<CohesiveHistory>> history;
+    Eigen::VectorXd d;
+    double lambda;
+  };
+  Snapshot snapshot() const { return {cracks_, history_, d_, lambda_}; }
+  // Back to a snapshot; `rebuild` when the crack geometry may have changed since.
+  void restore(const Snapshot& s, bool rebuild) {
+    cracks_ = s.cracks;
+    history_ = s.history;
+    if (rebuild) build_stage();
+    d_ = s.d;
+    lambda_ = s.lambda;
+  }
+  std::vector<TipCriterion> criteria();
+  double max_ratio(const std::vector<TipCriterion>& t) const {
+    double r = -std::numeric_limits<double>::infinity();
+    for (const TipCriterion& c : t)
+      if (c.valid) r = std::max(r, c.stress_Pa / law_.tensile_strength_Pa);
+    return r;
+  }
+  // Grows every tip at f_t and re-equilibrates, repeatedly. Returns "" or a failure diagnostic.
+  std::string grow(int& iterations);
+  CellState state(int iterations);
+};
+
+NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHistory>& trial) {
+  NewtonResult res;
+  const std::vector<CohesiveHistory> committed = flat_history();
+  FractureSystem& sys = *stage_.sys;
+  const Eigen::VectorXd g = sys.opening_gradient();
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(g.size());
+  const auto N = static_cast<Eigen::Index>(sys.dofs());
+  Eigen::VectorXd r, rhs(N + 1);
+  for (int it = 0; it <= o_.max_iterations; ++it) {
+    sys.evaluate(d_, lambda_, law_, committed, true, r, eval_);
+    const double cres = hold == Hold::Lambda ? lambda_ - target : g.dot(d_) - target;
+    if (!r.allFinite()) {
+      res.why = "the residual is not finite";
+      return res;
+    }
+    const double cscale = hold == Hold::Lambda ? 1e-12 * std::max(std::abs(target), 1e-12)
+                                               : 1e-10 * law_.critical_opening() * std::max(active_length(), 1e-12);
+    if (it > 0 && r.norm() <= o_.tolerance * scale_ && std::abs(cres) <= cscale) {
+      res.ok = true;
+      res.iterations = it;
+      trial = eval_.trial;
+      return res;
+    }
+    if (it == o_.max_iterations) break;
+    const Eigen::SparseMatrix<double> J = hold == Hold::Lambda ? sys.bordered(zero, 1.0) : sys.bordered(g, 0.0);
+    // The pattern is fixed per stage and constraint: the ordering and symbolic analysis are reused.
+    const long key = 2 * stage_id_ + (hold == Hold::Lambda ? 0 : 1);
+    if (!lu_ || key != lu_key_) {
+      lu_ = std::make_unique<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>>();
+      lu_->analyzePattern(J);
+      lu_key_ = key;
+    }
+    Eigen::UmfPackLU<Eigen::SparseMatrix<double>>& lu = *lu_;
+    lu.factorize(J);  // keeps a reference to J, which lives until the solve below
+    if (lu.info() != Eigen::Success) {
+      res.why = "UMFPACK: singular bordered tangent";
+      return res;
+    }
+    rhs.head(N) = -r;
+    rhs[N] = -cres;
+    const Eigen::VectorXd x = lu.solve(rhs);
+    if (!x.allFinite()) {
+      res.why = "UMFPACK: non-finite correction";
+      return res;
+    }
+    d_ += x.head(N);
+    lambda_ += x[N];
+  }
+  res.why = fmt::format("no convergence in {} iterations (|r| = {:.3e}, tolerance {:.3e})", o_.max_iterations, r.norm(),
+                        o_.tolerance * scale_);
+  return res;
+}
+
+std::vector<TipCriterion> Analysis::criteria() {
+  const TipSamples s = tip_samples(cell_, mesh_, cracks_, o_.growth);
+  std::vector<std::array<double, 3>> stress(s.crack.size());
+  if (!s.crack.empty()) {
+    const GeneralTable t = enriched_table_at(base_, *stage_.em, cracks_, s.x);
+    const std::array<double, 9> D = elastic_.D();
+    for (std::size_t p = 0; p < t.size(); ++p) {
+      std::array<double, 3> eps{0.0, 0.0, 0.0};
+      for (std::int64_t e = t.support.begin(p); e < t.support.end(p); ++e) {
+        const std::int32_t i = t.support.indices[e];
+        eps[0] += t.grad[2 * e] * d_[2 * i];
+        eps[1] += t.grad[2 * e + 1] * d_[2 * i + 1];
+        eps[2] += t.grad[2 * e + 1] * d_[2 * i] + t.grad[2 * e] * d_[2 * i + 1];
+      }
+      stress[p] = apply_D(D, eps);
+    }
+  }
+  return tip_criteria(cracks_, s, stress);
+}
+
+std::string Analysis::grow(int& iterations) {
+  for (int round = 0; round < o_.max_growth_per_step; ++round) {
+    const std::vector<TipCriterion> t = criteria();
+    std::vector<std::size_t> ready;
+    for (std::size_t c = 0; c < cracks_.size(); ++c)
+      if (t[c].valid && t[c].stress_Pa >= law_.tensile_strength_Pa * (1.0 - 1e-9)) ready.push_back(c);
+    if (ready.empty()) return "";
+    std::stable_sort(ready.begin(), ready.end(), [&](std::size_t a, std::size_t b) { return t[a].stress_Pa > t[b].stress_Pa; });
+    const Snapshot before = snapshot();
+    std::string why;
+    bool ok = false;
+    // Every tip at f_t advances; if the new geometry does not re-equilibrate, only the most stressed.
+    for (int attempt = 0; attempt < 2 && !ok; ++attempt) {
+      if (attempt == 1) {
+        if (ready.size() == 1) break;
+        restore(before, true);
+      }
+      bool grew = false;
+      for (std::size_t k = 0; k < (attempt == 0 ? ready.size() : 1); ++k)
+        grew = advance_crack(cracks_, ready[k], t[ready[k]].direction, cell_, mesh_, o_.growth) || grew;
+      if (!grew) {
+        if (attempt == 0) return "";
+        break;
+      }
+      build_stage();
+      // Re-equilibrate the new geometry: at the same far-face displacement while nothing softens (the
+      // new segments sit on their stiff activation branch), at the same crack opening afterwards (on
+      // the softening branch a fixed displacement may have no nearby equilibrium).
+      const bool opening = o_.control == PathControl::CrackOpening && softening();
+      const Hold hold = opening ? Hold::Opening : Hold::Lambda;
+      const double target = opening ? stage_.sys->opening_integral(d_) : lambda_;
+      const Eigen::VectorXd d0 = d_;
+      const double l0 = lambda_;
+      std::vector<CohesiveHistory> trial;
+      NewtonResult n = newton(hold, target, trial);
+      if (!n.ok && hold == Hold::Opening) {
+        d_ = d0;
+        lambda_ = l0;
+        n = newton(Hold::Lambda, l0, trial);
+      }
+      if (n.ok) {
+        ok = true;
+        iterations += n.iterations;
+        commit(trial);
+      } else {
+        why = n.why;
+      }
+    }
+    if (!ok) {
+      restore(before, true);
+      return "re-equilibration after crack growth failed: " + why;
+    }
+  }
+  return "";
+}
+
+CellState Analysis::state(int iterations) {
+  CellState s;
+  FractureSystem& sys = *stage_.sys;
+  const std::vector<CohesiveHistory> h = flat_history();
+  Eigen::VectorXd r;
+  sys.evaluate(d_, lambda_, law_, h, false, r, eval_);
+  const double F = sys.reaction(d_, lambda_);
+  s.strain = lambda_ / cell_.side_m;
+  s.sigma_bar_Pa = F / cell_.side_m;
+  s.bulk_energy_J_m = sys.bulk_energy(d_);
+  double coh = 0.0, diss = 0.0, wmax = 0.0;
+  for (std::size_t p = 0; p < h.size(); ++p) {
+    const double w = stage_.em->cohesive[p].weight;
+    coh += 0.5 * w * (eval_.traction[p][0] * eval_.opening[p][0] + eval_.traction[p][1] * eval_.opening[p][1]);
+    diss += w * (law_.dissipated(h[p].kappa) + h[p].shear_dissipated);
+    wmax = std::max(wmax, eval_.opening[p][0]);
+  }
+  s.cohesive_energy_J_m = coh;
+  s.dissipated_J_m = diss;
+  work_ += 0.5 * (last_force_ + F) * (lambda_ - last_lambda_);
+  last_force_ = F;
+  last_lambda_ = lambda_;
+  s.external_work_J_m = work_;
+  s.max_opening_m = wmax;
+  for (std::size_t c = 0; c < cracks_.size(); ++c) {
+    s.crack_segments += cracks_[c].active;
+    for (std::size_t g = 0; g < cracks_[c].active; ++g) {
+      bool open = false;
+      for (int q = 0; q < gauss(); ++q)
+        open = open || history_[c][g * gauss() + q].kappa > law_.activation_opening() * (1.0 + 1e-9);
+      s.open_segments += open ? 1 : 0;
+    }
+  }
+  s.newton_iterations = iterations;
+  return s;
+}
+
+CellResponse Analysis::run(const FractureObserver& observer) {
+  CellResponse out;
+  out.side_m = cell_.side_m;
+  out.porosity = cell_.porosity();
+  out.states.push_back(CellState{});
+  if (observer) observer(0, out.states.back());
+  auto emit = [&](const CellState& s) {
+    out.states.push_back(s);
+    if (observer) observer(out.states.size() - 1, s);
+  };
+  build_stage();
+  out.nodes = base_.node_count();
+
+  // 1. The elastic branch: K d1 = f_unit (lambda = 1).
+  {
+    FractureSystem& sys = *stage_.sys;
+    Eigen::VectorXd r;
+    sys.evaluate(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sys.dofs())), 0.0, law_, {}, true, r, eval_);
+    const auto N = static_cast<Eigen::Index>(sys.dofs());
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
+    const Eigen::SparseMatrix<double> J = sys.bordered(zero, 1.0);  // UmfPackLU keeps a reference to it
+    Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu(J);
+    if (lu.info() != Eigen::Success) {
+      out.status = CellStatus::Failed;
+      out.diagnostic = "UMFPACK: the elastic stiffness is singular";
+      return out;
+    }
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(N + 1);
+    rhs[N] = 1.0;
+    const Eigen::VectorXd x = lu.solve(rhs);
+    d_ = x.head(N);
+    lambda_ = 1.0;
+  }
+  const Eigen::VectorXd d1 = d_;
+  const double F1 = stage_.sys->reaction(d1, 1.0);
+  out.E0_bar_Pa = F1;  // (F1 / side) / (1 / side)
+  const double ratio1 = max_ratio(criteria());
+  const double lambda_max = o_.max_strain * cell_.side_m;
+  const double lambda_act = ratio1 > 0.0 ? 1.0 / ratio1 : std::numeric_limits<double>::infinity();
+  const double lambda_end = std::min(lambda_act, lambda_max);
+  scale_ = stage_.sys->unit_load().norm() * lambda_end;
+  const int ne = std::max(1, o_.elastic_states);
+  for (int k = 1; k <= ne; ++k) {
+    lambda_ = lambda_end * k / ne;
+    d_ = lambda_ * d1;
+    emit(state(0));
+  }
+  peak_ = out.states.back().sigma_bar_Pa;
+  if (!(lambda_act <= lambda_max)) {
+    out.status = CellStatus::StepLimit;
+    out.diagnostic = "no crack reached the growth criterion below max_strain";
+    return out;
+  }
+
+  // 2. First cracking, then 3. path following.
+  int iterations = 0;
+  std::string why = grow(iterations);
+  if (!why.empty()) {
+    out.status = CellStatus::Failed;
+    out.diagnostic = fmt::format("at e_bar = {:.4e}: {}", lambda_ / cell_.side_m, why);
+    return out;
+  }
+  emit(state(iterations));
+  peak_ = std::max(peak_, out.states.back().sigma_bar_Pa);
+
+  double dc = o_.opening_increment, de = o_.strain_increment;
+  out.status = CellStatus::StepLimit;
+  for (int step = 0; step < o_.max_steps; ++step) {
+    const bool opening = o_.control == PathControl::CrackOpening && active_length() > 0.0;
+    const Hold hold = opening ? Hold::Opening : Hold::Lambda;
+    const double c0 = stage_.sys->opening_integral(d_);
+    const double target = opening ? c0 + dc * law_.critical_opening() * active_length() : lambda_ + de * cell_.side_m;
+    const Eigen::VectorXd d0 = d_;
+    const double l0 = lambda_;
+    const Snapshot pre = snapshot();
+    std::vector<CohesiveHistory> trial;
+    NewtonResult n = newton(hold, target, trial);
+    auto cut = [&]() {
+      d_ = d0;
+      lambda_ = l0;
+      if (opening) dc *= 0.5;
+      else de *= 0.5;
+      return opening ? dc >= o_.min_opening_increment : de >= o_.min_strain_increment;
+    };
+    if (!n.ok) {
+      if (!cut()) {
+        out.status = CellStatus::Failed;
+        out.diagnostic = fmt::format("at e_bar = {:.4e}, step {}: {} (smallest step)", l0 / cell_.side_m, step, n.why);
+        break;
+      }
+      continue;
+    }
+    // Overshoot of the growth criterion: cut, so cracks advance close to f_t.
+    const std::vector<CohesiveHistory> committed = flat_history();
+    commit(trial);
+    const double ratio = max_ratio(criteria());
+    if (ratio > 1.0 + o_.growth_tolerance) {
+      commit(committed);
+      if (cut()) continue;
+      commit(trial);  // at the smallest step: accept the overshoot
+    }
+    int its = n.iterations;
+    why = grow(its);
+    if (!why.empty()) {
+      // Back to the start of the step (geometry included) with a smaller step.
+      restore(pre, true);
+      if (cut()) continue;
+      out.status = CellStatus::Failed;
+      out.diagnostic = fmt::format("at e_bar = {:.4e}: {} (smallest step)", lambda_ / cell_.side_m, why);
+      break;
+    }
+    emit(state(its));
+    const CellState& s = out.states.back();
+    peak_ = std::max(peak_, s.sigma_bar_Pa);
+    if (n.iterations <= o_.easy_iterations) {
+      if (opening) dc = std::min(dc * o_.step_growth, o_.max_opening_increment);
+      else de = std::min(de * o_.step_growth, o_.max_strain_increment);
+    }
+    if (active_length() > 0.0 && s.sigma_bar_Pa < o_.separation_fraction * peak_) {
+      out.status = CellStatus::Separated;
+      break;
+    }
+    if (std::abs(s.strain) > o_.max_strain) {
+      out.diagnostic = "reached max_strain";
+      break;
+    }
+  }
+  if (out.status == CellStatus::StepLimit && out.diagnostic.empty()) out.diagnostic = "reached max_steps";
+  out.dofs = stage_.em->dof_count();
+  out.enriched_nodes = stage_.em->enriched_node.size();
+  return out;
+}
+
+}  // namespace
+
+CellResponse analyze_cell(const CellGeometry& cell, const CellDiscretization& mesh, const CellMaterial& material,
+                          const CellAnalysisOptions& options, const FractureObserver& observer,
+                          std::vector<Crack>* final_cracks) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Analysis a(cell, mesh, material, options);
+  CellResponse r = a.run(observer);
+  if (final_cracks) *final_cracks = a.cracks();
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+double state_damage(const CellResponse& r, const CellState& s) {
+  if (s.strain == 0.0 || r.E0_bar_Pa == 0.0) return 0.0;
+  return 1.0 - s.sigma_bar_Pa / (r.E0_bar_Pa * s.strain);
+}
+
+}  // namespace uhpc::micro

@@ -1,0 +1,30 @@
+#pragma once
+// Reading CellAnalysisOptions from a configuration section (e.g. "analysis" of the run config) and
+// the cohesive matrix of Table 2 from the microstructure file's "matrix" section. Every key is
+// optional (the defaults of cell_analysis.hpp apply) but validated when present; an unknown key is an
+// error at the caller's finish(). Errors are uhpc::InputError "<file>: key 'k': reason".
+//
+// Keys (section-relative; defaults in cell_analysis.hpp):
+//   rk.support_factor, rk.kernel ("cubic_bspline" | "quartic_spline"),
+//   quadrature.triangle_points (1, 3, 6, 7, 12), quadrature.segment_points (1..5),
+//   quadrature.correction ("vci" | "none"), quadrature.crack_points (1..5),
+//   essential_bc.nitsche_factor,
+//   enrichment.tip ("ramped"), enrichment.min_ratio,
+//   cohesive.activation_ratio (0, 0.1], cohesive.contact_penalty_ratio, cohesive.mode ("mode_i" | "mixed"),
+//   growth.increment_spacings, growth.average_radius_spacings, growth.coalescence_spacings, growth.tolerance, growth.max_per_step,
+//   path.control ("crack_opening" | "displacement"), path.elastic_states, path.opening_increment,
+//   path.min_opening_increment, path.max_opening_increment, path.strain_increment,
+//   path.min_strain_increment, path.max_strain_increment, path.step_growth, path.easy_iterations,
+//   path.max_steps, path.max_strain, path.separation_fraction,
+//   newton.max_iterations, newton.tolerance.
+#include "cell_analysis.hpp"
+#include "uhpc/config.hpp"
+
+namespace uhpc::micro {
+
+CellAnalysisOptions read_cell_analysis_options(const Config& section);
+
+// youngs_modulus_Pa, poissons_ratio, tensile_strength_Pa, fracture_energy_J_m2 (all required).
+CellMaterial read_cell_material(const Config& matrix);
+
+}  // namespace uhpc::micro

@@ -1,0 +1,70 @@
+#pragma once
+// The RK Galerkin model with Heaviside-enriched cracks (PHYSICS.md section 2):
+//   u^h(x) = sum_I Psi_I(x) d_I + sum_cracks sum_J Psi_J(x) [H(x) - H(x_J)] R(x) a_J,
+// H the side of the crack (0/1), R the tip ramp (crack_geometry.hpp). Node J of crack c carries a_J
+// when its support is cut by the active part of c and the enriched function is not negligible on
+// the support (its L2 norm over the support is at least min_enrichment_ratio times that of Psi_J; a
+// support that barely touches a crack would make the system nearly singular).
+//
+// Enriched DOFs are "generalized nodes" n + k (2 DOFs each, like a node), so every point carries one
+// compressed row of (generalized node, value, trial gradient, test gradient) and the assembly treats
+// standard and enriched functions alike. Domain quadrature: the base model's points in uncut
+// triangles, the triangle pieces on each side of the cracks in cut ones (split_triangle). With the
+// base model's VCI option the test gradients of all functions, standard and enriched, get the VCI
+// constant computed on this quadrature with the crack faces as internal boundaries (enrichment.cpp).
+// Cohesive points: Gauss points along each active segment, with the jump operator
+// [[u]](x) = sum_J Psi_J(x) R(x) a_J over the crack's enriched nodes (standard parts cancel).
+#include <cstdint>
+#include <vector>
+
+#include "cell_mesh.hpp"
+#include "crack_geometry.hpp"
+#include "rk_galerkin_model.hpp"
+
+namespace uhpc::micro {
+
+struct GeneralTable {
+  NeighbourList support;  // generalized node ids per point
+  std::vector<double> psi, grad, test_grad;  // grad/test_grad: 2 per entry
+  std::size_t size() const { return support.size(); }
+};
+
+struct CohesivePoint {
+  std::array<double, 2> x;
+  double weight;                    // length
+  std::array<double, 2> normal;     // towards the H = 1 side
+  std::int32_t crack, segment, gauss;
+  std::int64_t begin, end;          // entries in EnrichedModel::jump (enriched gnode, coefficient)
+};
+
+struct EnrichmentOptions {
+  double min_enrichment_ratio = 1e-4;  // [choice] see above
+  int crack_points = 4;                // Gauss points per crack segment (1..5)
+};
+
+struct EnrichedModel {
+  std::size_t standard_nodes = 0;
+  std::vector<std::int32_t> enriched_node;   // per enriched gnode k (id n + k): the RK node
+  std::vector<std::int32_t> enriched_crack;  // and its crack
+  std::vector<double> x, weight;             // domain points
+  GeneralTable domain;
+  GeneralTable boundary;                     // at the base model's boundary points (same order)
+  GeneralTable constraints;                  // at the constraint points
+  std::vector<CohesivePoint> cohesive;
+  std::vector<std::int32_t> jump_node;       // enriched gnode ids
+  std::vector<double> jump_coefficient;      // Psi_J R at the cohesive point
+  std::size_t cut_triangles = 0;
+
+  std::size_t gnode_count() const { return standard_nodes + enriched_node.size(); }
+  std::size_t dof_count() const { return 2 * gnode_count(); }
+};
+
+EnrichedModel build_enriched_model(const RkGalerkinModel& base, const CellDiscretization& mesh, const std::vector<Crack>& cracks,
+                                   const std::vector<std::array<double, 2>>& constraint_points,
+                                   const EnrichmentOptions& options);
+
+// Enriched shape functions at arbitrary points (stress sampling); test_grad = grad.
+GeneralTable enriched_table_at(const RkGalerkinModel& base, const EnrichedModel& em, const std::vector<Crack>& cracks,
+                               const std::vector<double>& points);
+
+}  // namespace uhpc::micro
