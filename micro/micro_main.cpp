@@ -9,9 +9,14 @@
 //       the cell of the named cell config, its elastic uniaxial tension with the RK Galerkin solver:
 //       DIR/elastic.json (E0_bar, sigma_bar, energy check, counts, timing, provenance)
 //
+//   uhpc-micro run --config data/micro_run.json --out DIR [--set key=value]...
+//       one cell's cohesive-crack analysis to separation: DIR/cell.json, DIR/curves.h5, DIR/summary.json
+//   uhpc-micro ensemble --config data/micro_analysis_ensemble.json --out DIR [-j N] [--set key=value]...
+//       sizes x realizations, resumable: per cell as `run`, DIR/ensemble.h5 (uhpc-calibrate's input) and
+//       DIR/summary.json
+//
 // --set microstructure.<key>=... overrides data/microstructure.json (Burr law, porosity, matrix);
-// for generate-ensemble and elastic, --set cell.<key>=... overrides the cell config. (`run` and `ensemble`, the
-// cohesive-crack analyses, come with the next issue.)
+// for generate-ensemble, elastic, run and ensemble, --set cell.<key>=... overrides the cell config.
 #include <chrono>
 #include <filesystem>
 #include <string>
@@ -20,7 +25,9 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "fracture_analyzer.hpp"
 #include "generate_commands.hpp"
+#include "run_commands.hpp"
 #include "uhpc/cli.hpp"
 #include "uhpc/logging.hpp"
 
@@ -51,11 +58,31 @@ int main(int argc, char** argv) {
   elastic->add_option("--out", out, "output directory")->required();
   uhpc::add_set_option(*elastic, overrides);
 
+  CLI::App* run = app.add_subcommand(
+      "run", "cohesive-crack analysis of one cell to separation: curves.h5 (stress, energies, damage) and summary.json");
+  run->add_option("--config", config_path, "run configuration (JSON), e.g. data/micro_run.json")->required();
+  run->add_option("--out", out, "output directory")->required();
+  uhpc::add_set_option(*run, overrides);
+
+  int jobs = 0;
+  CLI::App* analyse = app.add_subcommand(
+      "ensemble", "cohesive-crack analysis of sizes x realizations (resumable): ensemble.h5 and summary.json");
+  analyse->add_option("--config", config_path, "ensemble configuration (JSON), e.g. data/micro_analysis_ensemble.json")
+      ->required();
+  analyse->add_option("--out", out, "output directory")->required();
+  analyse->add_option("-j,--jobs", jobs, "cells analysed at once (default: one per hardware thread)");
+  uhpc::add_set_option(*analyse, overrides);
+
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);
     uhpc::init_logging("uhpc-micro", quiet ? uhpc::Verbosity::Quiet : uhpc::Verbosity::Normal);
     if (generate->parsed()) return uhpc::micro::run_generate(config_path, overrides, out);
     if (elastic->parsed()) return uhpc::micro::run_elastic(config_path, overrides, out);
+    if (run->parsed())
+      return uhpc::micro::run_cell_command(config_path, overrides, out, uhpc::micro::fracture_analyzer_factory());
+    if (analyse->parsed())
+      return uhpc::micro::run_ensemble_command(config_path, overrides, out, jobs,
+                                               uhpc::micro::fracture_analyzer_factory());
     return uhpc::micro::run_generate_ensemble(config_path, overrides, out);
   });
 }

@@ -1,0 +1,295 @@
+// `uhpc-micro ensemble`: sizes x realizations of analysed cells, their per-size statistics, ensemble.h5.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <thread>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "cell_results.hpp"
+#include "cell_settings.hpp"
+#include "ensemble_curves.hpp"
+#include "run_commands.hpp"
+#include "uhpc/atomic_file.hpp"
+#include "uhpc/cli.hpp"
+#include "uhpc/ensemble_file.hpp"
+#include "uhpc/errors.hpp"
+#include "uhpc/hash.hpp"
+#include "uhpc/progress.hpp"
+
+namespace fs = std::filesystem;
+
+namespace uhpc::micro {
+
+namespace {
+
+struct AnalysisEnsembleSettings {
+  std::string cell_config;
+  std::vector<double> sizes_m;
+  std::size_t realizations = 0;
+  std::uint64_t base_seed = 0;
+  bool retry_failed = true;
+  PostOptions post;
+};
+
+std::string size_label(double size_m) { return fmt::format("size_{:.1f}mm", size_m * 1e3); }
+
+AnalysisEnsembleSettings read_settings(const Config& cfg) {
+  AnalysisEnsembleSettings e;
+  cfg.accept_any("notes");
+  e.cell_config = cfg.text("cell_config");
+  if (fs::path(e.cell_config).is_relative())
+    e.cell_config = (fs::path(cfg.source()).parent_path() / e.cell_config).string();
+  e.sizes_m = cfg.numbers("cell_sizes_m", Range::positive());
+  // The ensemble file needs strictly ascending sizes, and each size its own directory.
+  for (std::size_t i = 1; i < e.sizes_m.size(); ++i) {
+    if (!(e.sizes_m[i] > e.sizes_m[i - 1]))
+      cfg.fail("cell_sizes_m", fmt::format("must be strictly ascending, but entry {} ({}) follows {}", i,
+                                           e.sizes_m[i], e.sizes_m[i - 1]));
+    if (size_label(e.sizes_m[i]) == size_label(e.sizes_m[i - 1]))
+      cfg.fail("cell_sizes_m", fmt::format("entries {} and {} share the directory name {} (sizes must differ by "
+                                           "at least 0.1 mm)", i - 1, i, size_label(e.sizes_m[i])));
+  }
+  e.realizations = static_cast<std::size_t>(cfg.integer("realizations", Range::closed(1, 10000)));
+  e.base_seed = static_cast<std::uint64_t>(cfg.integer("base_seed", Range::closed(0, 9007199254740991.0)));
+  e.retry_failed = cfg.flag("retry_failed");
+  e.post = read_post_options(cfg);
+  return e;
+}
+
+struct CellOutcome {
+  CellJob job;
+  CellResult result;
+};
+
+nlohmann::json spread_json(const std::vector<double>& v) {
+  if (v.empty()) return {{"mean", nullptr}, {"std", nullptr}, {"min", nullptr}, {"max", nullptr}, {"count", 0}};
+  const Spread s = spread(v);
+  return {{"mean", s.mean},
+          {"std", s.std},
+          {"min", *std::min_element(v.begin(), v.end())},
+          {"max", *std::max_element(v.begin(), v.end())},
+          {"count", s.count}};
+}
+
+// A cell counts in the mean when it finished (not Failed) and its curve covers the whole grid
+// (separated, or stopped beyond the grid's end): an incomplete curve would bias the mean.
+bool averaged(const CellResult& r) { return r.response.status != CellStatus::Failed && r.bridged && r.resampled.complete; }
+
+}  // namespace
+
+int run_ensemble_command(const std::string& config_path, const std::vector<std::string>& overrides_in,
+                         const fs::path& out, int jobs, const CellAnalyzerFactory& factory) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::string> overrides = overrides_in;
+  std::vector<std::string> cell_overrides = take_prefixed_overrides(overrides, "cell");
+  for (const std::string& o : take_prefixed_overrides(overrides, "microstructure"))
+    cell_overrides.push_back("microstructure." + o);
+  const Config cfg = Config::load(config_path, overrides);
+  const AnalysisEnsembleSettings e = read_settings(cfg);
+  const Config analysis = cfg.section("analysis");
+  const CellAnalyzer analyzer = factory(analysis);
+  cfg.finish();
+  // Validate every size before analysing anything, so bad input fails at once.
+  std::vector<CellSettings> per_size;
+  for (double size : e.sizes_m) per_size.push_back(load_cell_settings(e.cell_config, cell_overrides, size));
+  const std::string post_hash = post_options_hash(e.post);
+  const nlohmann::json analysis_json = analysis.json();  // copies: the Config is not read from the workers
+  const std::string source = cfg.source();
+
+  const std::size_t total = e.sizes_m.size() * e.realizations;
+  std::vector<CellOutcome> outcomes(total);
+  ProgressOptions po;
+  po.unit = "cells";
+  Progress progress("cells", total, po);
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex error_mutex;
+  std::exception_ptr input_error;
+
+  const auto do_cell = [&](std::size_t k) {
+    const std::size_t i = k / e.realizations, r = k % e.realizations;
+    CellOutcome& o = outcomes[k];
+    CellJob& job = o.job;
+    job.size_m = e.sizes_m[i];
+    job.size_index = i;
+    job.realization = r;
+    job.seed = derive_cell_seed(e.base_seed, i, r);
+    job.out_dir = out / size_label(job.size_m) / fmt::format("cell_{:02d}", r);
+    job.settings = per_size[i];
+    job.settings.seed = job.seed;
+    job.cell_config = e.cell_config;
+    job.analysis = analysis_json;
+    job.analysis_source = source;
+    const std::string hash = cell_hash(job);
+    if (std::optional<StoredCell> stored = load_cell_results(job.out_dir, hash, post_hash);
+        stored && (stored->response.status != CellStatus::Failed || !e.retry_failed)) {
+      o.result = post_process(std::move(stored->response), e.post);
+      o.result.reloaded = true;
+      // Post-processing options changed since: refresh the derived data in the cell's files.
+      if (!stored->post_hash_matches) write_cell_results(job.out_dir, job, o.result, e.post, "uhpc-micro ensemble");
+      return;
+    }
+    fs::create_directories(job.out_dir);
+    CellResponse response;
+    try {
+      prepare_cell(job, "uhpc-micro ensemble");
+      response = run_analyzer(analyzer, job, [](std::size_t, const CellState&) {});
+    } catch (const CellGenerationError& err) {
+      response.side_m = job.size_m;
+      response.status = CellStatus::Failed;
+      response.diagnostic = std::string("cell generation failed: ") + err.what();
+    }
+    job.cell.reset();  // the geometry and the mesh are not needed any more: free them
+    job.mesh.reset();
+    o.result = post_process(std::move(response), e.post);
+    write_cell_results(job.out_dir, job, o.result, e.post, "uhpc-micro ensemble");
+    if (o.result.response.status == CellStatus::Failed)
+      spdlog::warn("cell {} (size {:.2f} mm, seed {}) failed: {}", job.out_dir.string(), job.size_m * 1e3, job.seed,
+                   o.result.response.diagnostic);
+  };
+  std::size_t threads = jobs > 0 ? static_cast<std::size_t>(jobs) : std::max(1u, std::thread::hardware_concurrency());
+  threads = std::min(threads, total);
+  const auto worker = [&] {
+#ifdef _OPENMP
+    // [choice] With several cells at once each solve runs serially (its OpenMP loops get one thread in
+    // this worker), so -j N uses N cores without oversubscription; with -j 1 the solve keeps them all.
+    if (threads > 1) omp_set_num_threads(1);
+#endif
+    while (!stop.load()) {
+      const std::size_t k = next.fetch_add(1);
+      if (k >= total) break;
+      try {
+        do_cell(k);
+      } catch (...) {
+        // Bad input (or a file that cannot be written) stops the ensemble; finished cells stay on disk.
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!input_error) input_error = std::current_exception();
+        stop = true;
+      }
+      progress.advance();
+    }
+  };
+  if (threads <= 1) {
+    worker();
+  } else {
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < threads; ++t) pool.emplace_back(worker);
+    for (std::thread& t : pool) t.join();
+  }
+  if (input_error) std::rethrow_exception(input_error);
+  progress.finish();
+
+  // Per-size statistics.
+  std::vector<SizeCurves> curves;
+  nlohmann::json sizes = nlohmann::json::array();
+  std::size_t ok_total = 0, failed_total = 0, incomplete_total = 0, reloaded_total = 0;
+  std::printf("%8s %6s %6s %10s %8s %18s %22s %20s\n", "size_mm", "cells", "failed", "incomplete", "averaged",
+              "nominal_MPa", "peak_MPa mean +- std", "e(d=0.5) mean");
+  for (std::size_t i = 0; i < e.sizes_m.size(); ++i) {
+    std::vector<const ResampledCurve*> used;
+    std::vector<double> peaks, e50, E0, dissipated;
+    double bridging_max = 0.0;
+    std::size_t failed = 0, incomplete = 0, reloaded = 0;
+    nlohmann::json failures = nlohmann::json::array(), seeds = nlohmann::json::array();
+    for (std::size_t r = 0; r < e.realizations; ++r) {
+      const CellOutcome& o = outcomes[i * e.realizations + r];
+      const CellResult& res = o.result;
+      seeds.push_back(o.job.seed);
+      if (res.reloaded) ++reloaded;
+      if (res.response.status == CellStatus::Failed) {
+        ++failed;
+        failures.push_back({{"realization", r},
+                            {"seed", o.job.seed},
+                            {"directory", fs::relative(o.job.out_dir, out).string()},
+                            {"diagnostic", res.response.diagnostic}});
+        continue;
+      }
+      if (!averaged(res)) {
+        ++incomplete;
+        continue;
+      }
+      used.push_back(&res.resampled);
+      peaks.push_back(res.features.peak_stress_Pa);
+      if (res.features.strain_at_half_damage) e50.push_back(*res.features.strain_at_half_damage);
+      E0.push_back(res.response.E0_bar_Pa);
+      dissipated.push_back(res.features.dissipated_per_area_J_m3);
+      bridging_max = std::max(bridging_max, res.path.max_abs_difference);
+    }
+    const SizeCurves c = size_curves(e.sizes_m[i], e.post.grid, used);
+    curves.push_back(c);
+    ok_total += e.realizations - failed;
+    failed_total += failed;
+    incomplete_total += incomplete;
+    reloaded_total += reloaded;
+    sizes.push_back({{"cell_size_m", e.sizes_m[i]},
+                     {"directory", size_label(e.sizes_m[i])},
+                     {"cells", e.realizations},
+                     {"cells_ok", e.realizations - failed},
+                     {"cells_failed", failed},
+                     {"cells_incomplete", incomplete},
+                     {"cells_averaged", used.size()},
+                     {"cells_reloaded", reloaded},
+                     {"nominal_strength_Pa", used.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.nominal_strength_Pa)},
+                     {"strain_at_nominal_strength", used.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.strain_at_nominal_strength)},
+                     {"peak_stress_Pa", spread_json(peaks)},
+                     {"strain_at_half_damage", spread_json(e50)},
+                     {"E0_bar_Pa", spread_json(E0)},
+                     {"dissipated_energy_density_J_m3", spread_json(dissipated)},
+                     {"bridging_max_abs_difference", bridging_max},
+                     {"seeds", seeds},
+                     {"failures", failures}});
+    const Spread sp = spread(peaks), se = spread(e50);
+    std::printf("%8.2f %6zu %6zu %10zu %8zu %18.3f %12.3f +- %7.3f %20.4g\n", e.sizes_m[i] * 1e3, e.realizations,
+                failed, incomplete, used.size(), c.nominal_strength_Pa * 1e-6, sp.mean * 1e-6, sp.std * 1e-6,
+                se.count ? se.mean : std::numeric_limits<double>::quiet_NaN());
+  }
+
+  std::vector<double> skipped;
+  const Ensemble ensemble = to_ensemble(e.post.grid, curves, &skipped);
+  const Provenance provenance =
+      Provenance::make("uhpc-micro ensemble", fnv1a64_hex(cfg.hash() + per_size.front().config_hash), e.base_seed);
+  if (ensemble.size_count() > 0) write_ensemble(out / "ensemble.h5", ensemble, provenance);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const nlohmann::json summary = {
+      {"format", "uhpc-micro-ensemble/1"},
+      {"base_seed", e.base_seed},
+      {"realizations", e.realizations},
+      {"seed_rule", "derive_cell_seed(base_seed, size_index, realization): SplitMix64 chain, 53 bits"},
+      {"cells", total},
+      {"cells_ok", ok_total},
+      {"cells_failed", failed_total},
+      {"cells_incomplete", incomplete_total},
+      {"cells_reloaded", reloaded_total},
+      {"averaging_rule", "cells not failed whose curve covers the whole strain grid; failed and incomplete cells are "
+                         "excluded and listed"},
+      {"ensemble_file", ensemble.size_count() > 0 ? nlohmann::json("ensemble.h5") : nlohmann::json(nullptr)},
+      {"sizes_without_cells_m", skipped},
+      {"post_options", post_options_json(e.post)},
+      {"sizes", sizes},
+      {"wall_s", wall},
+      {"provenance", provenance.to_json()}};
+  write_text_atomic(out / "summary.json", summary.dump(2) + "\n");
+  std::printf("%zu cells (%zu reloaded), %zu failed, %zu incomplete, in %.1f s\n", total, reloaded_total, failed_total,
+              incomplete_total, wall);
+  if (failed_total > 0) spdlog::warn("{} cells failed: see {}", failed_total, (out / "summary.json").string());
+  if (!skipped.empty())
+    throw NumericalError(fmt::format("{} of {} sizes have no cell to average ({}); see {}", skipped.size(),
+                                     e.sizes_m.size(),
+                                     ensemble.size_count() > 0 ? "ensemble.h5 holds the others" : "no ensemble.h5 written",
+                                     (out / "summary.json").string()));
+  spdlog::info("wrote {} and {}", (out / "ensemble.h5").string(), (out / "summary.json").string());
+  return kExitOk;
+}
+
+}  // namespace uhpc::micro
