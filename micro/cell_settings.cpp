@@ -96,6 +96,12 @@ std::vector<std::string> take_prefixed_overrides(std::vector<std::string>& overr
   return taken;
 }
 
+std::vector<std::string> take_cell_overrides(std::vector<std::string>& overrides) {
+  std::vector<std::string> cell = take_prefixed_overrides(overrides, "cell");
+  for (const std::string& o : take_prefixed_overrides(overrides, "microstructure")) cell.push_back("microstructure." + o);
+  return cell;
+}
+
 CellSettings load_cell_settings(const std::string& cell_config_path, std::vector<std::string> overrides,
                                 double size_override_m, const std::uint64_t* seed_override) {
   const std::vector<std::string> micro_overrides = take_prefixed_overrides(overrides, "microstructure");

@@ -27,6 +27,11 @@ struct CellSettings {
 // stripped and removed from `overrides`.
 std::vector<std::string> take_prefixed_overrides(std::vector<std::string>& overrides, const std::string& prefix);
 
+// The overrides of a command whose config names a cell config: "cell.<key>=v" and
+// "microstructure.<key>=v" are removed from `overrides` and returned as the cell config's own
+// ("<key>=v" and "microstructure.<key>=v"); the rest stay for the command's config.
+std::vector<std::string> take_cell_overrides(std::vector<std::string>& overrides);
+
 // Loads both files (overrides "microstructure.*" go to the microstructure file, the rest to the cell
 // config), validates everything and checks that a cell can be generated at all (cell too small,
 // unreachable porosity). Calls finish() on both configs. `size_override_m` > 0 replaces cell_size_m

@@ -117,9 +117,7 @@ int run_generate_ensemble(const std::string& config_path, const std::vector<std:
                           const fs::path& out) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> overrides = overrides_in;
-  std::vector<std::string> cell_overrides = take_prefixed_overrides(overrides, "cell");
-  for (const std::string& o : take_prefixed_overrides(overrides, "microstructure"))
-    cell_overrides.push_back("microstructure." + o);
+  const std::vector<std::string> cell_overrides = take_cell_overrides(overrides);
   const Config cfg = Config::load(config_path, overrides);
   const EnsembleSettings e = read_ensemble(cfg);
 

@@ -20,9 +20,7 @@ int run_cell_command(const std::string& config_path, const std::vector<std::stri
                      const fs::path& out, const CellAnalyzerFactory& factory) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> overrides = overrides_in;
-  std::vector<std::string> cell_overrides = take_prefixed_overrides(overrides, "cell");
-  for (const std::string& o : take_prefixed_overrides(overrides, "microstructure"))
-    cell_overrides.push_back("microstructure." + o);
+  const std::vector<std::string> cell_overrides = take_cell_overrides(overrides);
   const Config cfg = Config::load(config_path, overrides);
   cfg.accept_any("notes");
   std::string cell_config = cfg.text("cell_config");
