@@ -217,16 +217,7 @@ std::vector<TipCriterion> Analysis::criteria() {
   if (!s.crack.empty()) {
     const GeneralTable t = enriched_table_at(base_, *stage_.em, cracks_, s.x);
     const std::array<double, 9> D = elastic_.D();
-    for (std::size_t p = 0; p < t.size(); ++p) {
-      std::array<double, 3> eps{0.0, 0.0, 0.0};
-      for (std::int64_t e = t.support.begin(p); e < t.support.end(p); ++e) {
-        const std::int32_t i = t.support.indices[e];
-        eps[0] += t.grad[2 * e] * d_[2 * i];
-        eps[1] += t.grad[2 * e + 1] * d_[2 * i + 1];
-        eps[2] += t.grad[2 * e + 1] * d_[2 * i] + t.grad[2 * e] * d_[2 * i + 1];
-      }
-      stress[p] = apply_D(D, eps);
-    }
+    for (std::size_t p = 0; p < t.size(); ++p) stress[p] = apply_D(D, t.strain(p, d_));
   }
   return tip_criteria(cracks_, s, stress);
 }

@@ -315,13 +315,7 @@ double FractureSystem::bulk_energy(const Eigen::VectorXd& d) const {
   double energy = 0.0;
 #pragma omp parallel for reduction(+ : energy) schedule(static)
   for (std::int64_t p = 0; p < static_cast<std::int64_t>(t.size()); ++p) {
-    std::array<double, 3> eps{0.0, 0.0, 0.0};
-    for (std::int64_t e = t.support.begin(p); e < t.support.end(p); ++e) {
-      const std::int32_t i = t.support.indices[e];
-      eps[0] += t.grad[2 * e] * d[2 * i];
-      eps[1] += t.grad[2 * e + 1] * d[2 * i + 1];
-      eps[2] += t.grad[2 * e + 1] * d[2 * i] + t.grad[2 * e] * d[2 * i + 1];
-    }
+    const std::array<double, 3> eps = t.strain(static_cast<std::size_t>(p), d);
     const std::array<double, 3> s = apply_D(D_, eps);
     energy += 0.5 * em_.weight[p] * (eps[0] * s[0] + eps[1] * s[1] + eps[2] * s[2]);
   }

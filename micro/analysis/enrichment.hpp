@@ -14,6 +14,7 @@
 // constant computed on this quadrature with the crack faces as internal boundaries (enrichment.cpp).
 // Cohesive points: Gauss points along each active segment, with the jump operator
 // [[u]](x) = sum_J Psi_J(x) R(x) a_J over the crack's enriched nodes (standard parts cancel).
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,20 @@ struct GeneralTable {
   NeighbourList support;  // generalized node ids per point
   std::vector<double> psi, grad, test_grad;  // grad/test_grad: 2 per entry
   std::size_t size() const { return support.size(); }
+
+  // Strain (xx, yy, engineering xy) at point p of the coefficients d (2 per generalized node), from the
+  // trial gradients.
+  template <class Vector>
+  std::array<double, 3> strain(std::size_t p, const Vector& d) const {
+    std::array<double, 3> eps{0.0, 0.0, 0.0};
+    for (std::int64_t e = support.begin(p); e < support.end(p); ++e) {
+      const std::int32_t i = support.indices[static_cast<std::size_t>(e)];
+      eps[0] += grad[2 * e] * d[2 * i];
+      eps[1] += grad[2 * e + 1] * d[2 * i + 1];
+      eps[2] += grad[2 * e + 1] * d[2 * i] + grad[2 * e] * d[2 * i + 1];
+    }
+    return eps;
+  }
 };
 
 struct CohesivePoint {
