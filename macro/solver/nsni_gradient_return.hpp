@@ -15,24 +15,45 @@
 // Moduli::along_deviator_return; a pressure held at a fixed limit (the tensile cutoff) has no gradient.
 // An elastic step leaves the gradient untouched.
 #include <algorithm>
+#include <cmath>
 
 #include "materials/material_step.hpp"
 
 namespace uhpc::macro {
 
-// g: the trial stress gradient of one direction (already advanced elastically), in the frame of
-// `stress`, the law's stress after its return mapping; `mod` from Law::moduli of that state.
-inline void return_stress_gradient(Mat3& g, const Mat3& stress, const Moduli& mod) {
-  if (mod.deviatoric_return >= 1.0 && !mod.pressure_fixed) return;
-  const double p = g.trace() / 3.0;
-  Mat3 dev = g - p * Mat3::Identity();
-  if (mod.deviatoric_return < 1.0) {
-    const Mat3 s = deviator(stress);
-    const double norm2 = s.cwiseProduct(s).sum();
-    const Mat3 along = norm2 > 0.0 ? Mat3((s.cwiseProduct(dev).sum() / norm2) * s) : Mat3::Zero();
-    dev = std::max(mod.deviatoric_return, 0.0) * (dev - along) + mod.along_deviator_return * along;
+// The return of one particle's step, set up once from the law's stress after its return mapping and
+// Law::moduli of that state, then applied to each direction's trial gradient (already advanced
+// elastically, in the frame of that stress).
+class StressGradientReturn {
+ public:
+  StressGradientReturn(const Mat3& stress, const Moduli& mod)
+      : mod_(mod), active_(mod.deviatoric_return < 1.0 || mod.pressure_fixed) {
+    if (mod.deviatoric_return >= 1.0) return;
+    s_ = deviator(stress);
+    const double norm2 = s_.cwiseProduct(s_).sum();
+    if (norm2 > 0.0) s_ /= std::sqrt(norm2);  // unit deviator n (zero when there is none)
   }
-  g = dev + (mod.pressure_fixed ? 0.0 : p) * Mat3::Identity();
+  bool active() const { return active_; }
+  void apply(Mat3& g) const {
+    if (!active_) return;
+    const double p = g.trace() / 3.0;
+    Mat3 dev = g - p * Mat3::Identity();
+    if (mod_.deviatoric_return < 1.0) {
+      const Mat3 along = s_.cwiseProduct(dev).sum() * s_;
+      dev = std::max(mod_.deviatoric_return, 0.0) * (dev - along) + mod_.along_deviator_return * along;
+    }
+    g = dev + (mod_.pressure_fixed ? 0.0 : p) * Mat3::Identity();
+  }
+
+ private:
+  Moduli mod_;
+  bool active_;
+  Mat3 s_ = Mat3::Zero();
+};
+
+// One direction's gradient (tests and single uses).
+inline void return_stress_gradient(Mat3& g, const Mat3& stress, const Moduli& mod) {
+  StressGradientReturn(stress, mod).apply(g);
 }
 
 }  // namespace uhpc::macro

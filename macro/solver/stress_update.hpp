@@ -72,6 +72,7 @@ StressUpdateSums update_stresses(Block& block, Particles& p, double dt, const Bu
     Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.stress.data() + 9 * i) = state.stress;
     if (nsni) {
       const Moduli mod = block.law.moduli(state);
+      const StressGradientReturn gradient_return(s_b, mod);
       const double lambda = mod.bulk_Pa - 2.0 / 3.0 * mod.shear_Pa;
       const double moment = std::cbrt(v_mid * v_mid * v_mid * v_mid * v_mid) / 12.0;
       for (int d = 0; d < 3; ++d) {
@@ -80,7 +81,7 @@ StressUpdateSums update_stresses(Block& block, Particles& p, double dt, const Bu
         const Mat3 Dd = 0.5 * (G + G.transpose());
         const Mat3 g_a = R * sg * R.transpose();
         Mat3 g_b = g_a + (lambda * Dd.trace() * I + 2.0 * mod.shear_Pa * Dd) * dt;
-        if (mod.deviatoric_return < 1.0 || mod.pressure_fixed) return_stress_gradient(g_b, s_b, mod);
+        gradient_return.apply(g_b);
         stab += moment * 0.5 * (g_a + g_b).cwiseProduct(Dd).sum() * dt;
         sg = R * g_b * R.transpose();
       }
