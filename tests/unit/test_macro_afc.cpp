@@ -171,6 +171,20 @@ TEST(AfcHydrostat, WaveSpeedUsesTheCurrentTangent) {
   EXPECT_NEAR(AfcMaterial(p).wave_speed(s, 1 + mu), std::sqrt(((1 + mu) * Ku + 4.0 / 3.0 * G) / (rho0 * (1 + mu))), 1e-9);
 }
 
+TEST(AfcHydrostat, AnOpenFullyFailedPointHasTheWaveSpeedOfTheClosedMaterial) {
+  const AfcParams p = paper_params();
+  const AfcMaterial law(p);
+  const double c0 = std::sqrt((p.C6_Pa / p.C7 + 4.0 / 3.0 * p.shear_modulus_Pa) / p.density_kg_m3);
+  AfcMaterial::State s;
+  s.d_plus = 0.5;  // not failed: the speed at the current (lower) density is higher
+  EXPECT_GT(law.wave_speed(s, 0.5), 1.1 * c0);
+  s.d_plus = 1.0;  // failed and open (stress-free): it resists nothing until it closes back to rho0
+  EXPECT_DOUBLE_EQ(law.wave_speed(s, 0.5), c0);
+  EXPECT_DOUBLE_EQ(law.wave_speed(s, 1e-3), c0);  // an ejected fragment at 1e3 V0
+  const double mu = 0.01;                          // closed again: the current tangent
+  EXPECT_DOUBLE_EQ(law.wave_speed(s, 1 + mu), law.wave_speed(AfcMaterial::State{}, 1 + mu));
+}
+
 // ---------------------------------------------------------------------------------------------------
 // Strength surfaces and rate factor
 
