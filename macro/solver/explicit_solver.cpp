@@ -54,7 +54,7 @@ void ExplicitSolver::initialize() {
         for (std::size_t i = 0; i < p_.n; ++i) {
           Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p_.stress.data() + 9 * i) = block.state[i].stress;
           p_.wave_speed[i] = block.law.wave_speed(block.state[i], p_.volume0[i] / p_.volume[i]);
-          dt_min = std::min(dt_min, options_.viscosity.critical_step(std::cbrt(p_.volume[i]), p_.wave_speed[i], 0.0));
+          dt_min = std::min(dt_min, options_.viscosity.critical_step(stable_length(p_.volume[i], p_.spacing[i]), p_.wave_speed[i], 0.0));
         }
         dt_ = options_.cfl * dt_min;
       },

@@ -91,7 +91,7 @@ StressUpdateSums update_stresses(Block& block, Particles& p, double dt, const Bu
     p.density[i] = p.mass[i] / v_new;
     const double c = block.law.wave_speed(state, step.density_ratio);
     p.wave_speed[i] = c;
-    const double h = std::cbrt(v_new);
+    const double h = stable_length(v_new, p.spacing[i]);
     const double q = viscosity.pressure(p.density[i], h, c, trD);
     p.bulk_q[i] = q;
     visc += -q * trD * dt * v_mid;

@@ -52,6 +52,21 @@ TEST(MacroRobustness, AParticleLeavingTheDomainFailsTheStep) {
   EXPECT_GT(ok, 5);
 }
 
+TEST(MacroRobustness, AnExpandedParticleIsAsStiffAsItsSpacingSays) {
+  // An ejected fragment at 1e3 V0: its RK gradients still scale with the fixed support, so its critical
+  // step is h_I / c (stable_length), not cbrt(V) / c, ten times longer.
+  SolverOptions o;
+  const ParticleBody body = box_body(0.04, 0.02, 0.02, 0.005);
+  Particles particles = Particles::from_body(body, 2500.0, o.support_factor);
+  particles.volume[7] *= 1e3;
+  ExplicitSolver s(std::move(particles), make_material_set(ElasticMaterial(ElasticParams{2500.0, 20e9, 15e9}), body.size()), o);
+  s.initialize();
+  const Particles& p = s.particles();
+  EXPECT_NEAR(s.stable_dt(), o.cfl * p.spacing[7] / p.wave_speed[7], 1e-12 * s.stable_dt());
+  EXPECT_NEAR(stable_length(p.volume[7], p.spacing[7]), 0.005, 1e-15);
+  EXPECT_NEAR(stable_length(0.5 * p.volume0[8], p.spacing[8]), 0.005 * std::cbrt(0.5), 1e-15);  // compressed
+}
+
 TEST(MacroRobustness, DefaultDomainIsTheBodyGrownByItsExtent) {
   ExplicitSolver s = make_box(SolverOptions{}, 0.0);
   // Bounding box of the particles with their half spacing: [0, 0.04] x [0, 0.02]^2; extent 0.04.
