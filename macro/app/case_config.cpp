@@ -75,6 +75,7 @@ SolverOptions read_solver(const Config& c) {
   o.viscosity.c_quadratic = v.number("quadratic", Range::non_negative());
   o.dt_collapse_fraction = c.number("dt_collapse_fraction", Range{0.0, 1.0, false, true});
   o.max_step_repeats = static_cast<int>(c.integer("max_step_repeats", Range::closed(0, 100)));
+  o.energy_error_limit = c.number("energy_error_limit", Range::non_negative());
   o.domain_margin = c.number("domain_margin", Range::positive());
   return o;
 }

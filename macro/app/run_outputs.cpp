@@ -105,6 +105,7 @@ nlohmann::json diagnostic_json(const ExplicitSolver& s, const FailureReport& f) 
                            {"volume_m3", f.volume_m3},
                            {"reference_volume_m3", f.volume0_m3}};
   if (f.particle < 0) failed["particle"] = nullptr;
+  if (f.kind == StepFailure::EnergyBalance) failed["energy_balance_error"] = f.energy_error;  // relative
   return {{"status", "numerical_failure"},
           {"reason", to_string(f.kind)},
           {"failed_step", f.step},

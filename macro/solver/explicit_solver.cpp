@@ -23,6 +23,7 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
   if (!(options_.dt_collapse_fraction >= 0 && options_.dt_collapse_fraction < 1))
     throw std::invalid_argument("ExplicitSolver: dt_collapse_fraction must be in [0, 1)");
   if (options_.max_step_repeats < 0) throw std::invalid_argument("ExplicitSolver: max_step_repeats must be >= 0");
+  if (!(options_.energy_error_limit >= 0)) throw std::invalid_argument("ExplicitSolver: energy_error_limit must be >= 0");
   if (!(options_.domain_margin > 0)) throw std::invalid_argument("ExplicitSolver: domain_margin must be > 0");
   if (!(options_.neighbour_skin >= 0)) throw std::invalid_argument("ExplicitSolver: neighbour_skin must be >= 0");
   shapes_.skin = options_.neighbour_skin;
@@ -264,6 +265,10 @@ StepFailure ExplicitSolver::attempt(double h) {
     particle = inverted_;
   } else if ((particle = first_outside(p_, domain_)) >= 0) {
     kind = StepFailure::OutOfDomain;
+  } else if (options_.energy_error_limit > 0 && energy_error_ratio(ledger_) > options_.energy_error_limit) {
+    kind = StepFailure::EnergyBalance;
+    failure_.energy_error = energy_error_ratio(ledger_);
+    particle = most_kinetic_particle(p_);  // where the instability shows first
   }
   if (kind != StepFailure::None) {
     failure_.kind = kind;
@@ -290,7 +295,9 @@ bool ExplicitSolver::step() {
   const bool guard = options_.fixed_dt_s <= 0 && options_.dt_collapse_fraction > 0;
   for (int repeat = 0;; ++repeat) {
     StepFailure kind = attempt(h);
-    if (kind == StepFailure::None && guard && dt_ < options_.dt_collapse_fraction * h) {
+    // A collapsed stable step is redone first: the energy error of the too-long attempt is its symptom.
+    const bool redo_allowed = kind == StepFailure::None || kind == StepFailure::EnergyBalance;
+    if (redo_allowed && guard && dt_ < options_.dt_collapse_fraction * h) {
       if (repeat < options_.max_step_repeats) {
         const double smaller = dt_;
         restore_state();

@@ -65,6 +65,9 @@ struct SolverOptions {
   // 0.8 of the critical step of the configuration it produced.
   double dt_collapse_fraction = 0.5;
   int max_step_repeats = 10;  // repeats of one step before it fails with StepFailure::StepCollapse
+  // A step whose energy balance error exceeds this fraction of the energy put in fails the run
+  // (StepFailure::EnergyBalance; 0 switches the check off). Sound runs stay below 2e-3.
+  double energy_error_limit = 0.05;
   // Particles must stay inside this box; unset: the bounding box of the particles and the sphere at
   // initialize(), grown on every side by domain_margin times its largest extent.
   std::optional<Region> domain;

@@ -1,5 +1,5 @@
-// The solver's robustness checks after every step (step_health.hpp): a non-finite state or a particle
-// leaving the domain box fails the step, the solver goes back to the state before it (the last good
+// The solver's robustness checks after every step (step_health.hpp): a non-finite state, a particle
+// leaving the domain box or an energy balance gone wrong fails the step, the solver goes back to the state before it (the last good
 // state) and reports the failed attempt.
 #include <cmath>
 #include <limits>
@@ -50,6 +50,46 @@ TEST(MacroRobustness, AParticleLeavingTheDomainFailsTheStep) {
   EXPECT_LT(s.time(), 1e-5);           // the body drifts rigidly at 100 m/s: the last good state is
   EXPECT_GT(s.time() + s.failure().dt_s, 1e-5);  // the one before the crossing
   EXPECT_GT(ok, 5);
+}
+
+// A box with the smooth transverse velocity sin(pi x / L) along y.
+ExplicitSolver make_swinging_box(const SolverOptions& options) {
+  ExplicitSolver s = make_box(options, 0.0);
+  Particles& p = s.particles();
+  for (std::size_t i = 0; i < p.n; ++i) p.v[3 * i + 1] = std::sin(M_PI * p.x[3 * i] / 0.04);
+  s.initialize();
+  return s;
+}
+
+TEST(MacroRobustness, AnUnstableStepIsCaughtByTheEnergyBalanceBeforeItIsNonFinite) {
+  // 1.1 times the critical step estimate: the energy error grows step after step (the same run without
+  // the check ends in a non-finite state or a particle leaving the domain); the check stops it at the
+  // first step past the limit, with every position still finite.
+  const double critical = make_box(SolverOptions{}, 0.0).stable_dt() / SolverOptions{}.cfl;
+  SolverOptions o;
+  o.fixed_dt_s = 1.1 * critical;
+  ExplicitSolver s = make_swinging_box(o);
+  int ok = 0;
+  while (ok < 2000 && s.step()) ++ok;
+  ASSERT_EQ(s.failure().kind, StepFailure::EnergyBalance);
+  EXPECT_STREQ(to_string(s.failure().kind), "energy_balance");
+  EXPECT_GT(s.failure().energy_error, o.energy_error_limit);
+  EXPECT_LE(energy_error_ratio(s.ledger()), o.energy_error_limit);  // the last good state
+  EXPECT_GE(s.failure().particle, 0);
+  EXPECT_GE(ok, 3);
+  EXPECT_LT(first_non_finite(s.particles()), 0);
+
+  o.energy_error_limit = 0.0;  // unchecked
+  ExplicitSolver unchecked = make_swinging_box(o);
+  ok = 0;
+  while (ok < 2000 && unchecked.step()) ++ok;
+  EXPECT_TRUE(unchecked.failure().kind == StepFailure::NonFinite || unchecked.failure().kind == StepFailure::OutOfDomain)
+      << to_string(unchecked.failure().kind);
+
+  o.fixed_dt_s = critical;  // at the estimate itself: stable, the error stays small
+  o.energy_error_limit = SolverOptions{}.energy_error_limit;
+  ExplicitSolver stable = make_swinging_box(o);
+  for (int k = 0; k < 2000; ++k) ASSERT_TRUE(stable.step()) << k << " " << to_string(stable.failure().kind);
 }
 
 TEST(MacroRobustness, AnExpandedParticleIsAsStiffAsItsSpacingSays) {
