@@ -1,7 +1,18 @@
 #!/usr/bin/env bash
 # Installs, from Debian 12 packages, everything the project builds, tests and plots with.
 # Idempotent and non-interactive: packages already present are skipped by apt itself.
+#   --with-lammps  also install LAMMPS (Debian's `lammps`, the `lmp` program) and Open MPI's mpirun, for
+#                  `make -C pipelines bench-lammps` only; the build, the tests and CI do not need them.
 set -euo pipefail
+
+with_lammps=0
+for arg in "$@"; do
+  case "$arg" in
+    --with-lammps) with_lammps=1 ;;
+    -h|--help) sed -n '2,5p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "install-deps: unknown option '$arg' (known: --with-lammps)" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   # toolchain
@@ -17,6 +28,10 @@ packages=(
   # figures (Debian's python3, /usr/bin/python3)
   python3 python3-matplotlib python3-numpy python3-h5py
 )
+if [ "$with_lammps" -eq 1 ]; then
+  # the speed peer of the macro benchmark: lmp, and mpirun for its 2-process run
+  packages+=(lammps openmpi-bin)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

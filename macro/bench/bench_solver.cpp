@@ -7,11 +7,21 @@
 //    moduli) hit by the paper's sphere (9.071 g, 6.35 mm) at 817 m/s, already touching the entry face;
 //    midpoint strain. Arguments: threads, support factor x 10 (20: 2.0 h, 25: 2.5 h), NSNI (0/1).
 //    Fixed 8 steps per configuration (about a minute for all eight on this machine).
-// `uhpc_bench_macro --benchmark_filter=PaperDisc` runs the disc alone.
+//  BM_PaperDisc100: the figure, the same disc in the shipped configuration (2.5 h, NSNI) over
+//    100 steps, on 1 and 2 threads (a few minutes; compared with LAMMPS by pipelines/bench_ratio.py).
+//  Counters of both: particles, searches/reuses (RK rebuilds in the timed steps that searched the
+//    neighbours afresh / reused the Verlet candidates), in_contact, peak_rss_MiB. peak_rss_MiB is the
+//    process's peak resident set so far (getrusage ru_maxrss after the timed steps), not the
+//    configuration's own: it includes every benchmark run before it, so for a clean figure run one
+//    configuration alone, e.g. --benchmark_filter='BM_PaperDisc100/threads:2'.
+// `uhpc_bench_macro --benchmark_filter=PaperDisc` runs the disc alone (both), `--benchmark_filter=
+// PaperDisc/` the 8-step product only, `--benchmark_filter=PaperDisc100` the 100-step figure only.
 #include <benchmark/benchmark.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+
+#include <sys/resource.h>
 
 #include <memory>
 
@@ -21,6 +31,14 @@
 namespace {
 
 using namespace uhpc::macro;
+
+// Peak resident set of the whole process so far, MiB (Linux: ru_maxrss in KiB); not reset between
+// benchmarks, so it is the peak of this one only when it runs alone (--benchmark_filter).
+double peak_rss_mib() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return -1.0;
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
 
 void BM_ElasticStep(benchmark::State& state) {
 #ifdef _OPENMP
@@ -80,6 +98,7 @@ void BM_PaperDisc(benchmark::State& state) {
   const std::size_t searches0 = solver->shapes().searches, reuses0 = solver->shapes().reuses;
   for (auto _ : state)
     if (!solver->step()) state.SkipWithError("step failed");
+  state.counters["peak_rss_MiB"] = peak_rss_mib();
   // RK rebuilds in the timed steps that searched the neighbours afresh / reused the Verlet candidates.
   state.counters["searches"] = static_cast<double>(solver->shapes().searches - searches0);
   state.counters["reuses"] = static_cast<double>(solver->shapes().reuses - reuses0);
@@ -92,6 +111,16 @@ BENCHMARK(BM_PaperDisc)
     ->ArgNames({"threads", "support_x10", "nsni"})
     ->ArgsProduct({{1, 2}, {20, 25}, {0, 1}})
     ->Iterations(8)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The figure: shipped configuration (2.5 h, NSNI), 100 steps.
+BENCHMARK(BM_PaperDisc)
+    ->Name("BM_PaperDisc100")
+    ->ArgNames({"threads", "support_x10", "nsni"})
+    ->Args({1, 25, 1})
+    ->Args({2, 25, 1})
+    ->Iterations(100)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
