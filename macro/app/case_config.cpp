@@ -45,6 +45,7 @@ ProjectileSettings read_projectile(const Config& p) {
   const Config c = p.section("contact");
   s.contact.penalty_scale = c.number("penalty_scale", Range::positive());
   s.contact.contact_radius_factor = c.number("contact_radius_factor", Range::open(0.0, 2.0));
+  s.contact.friction_coefficient = c.number("friction_coefficient", Range::closed(0.0, 2.0));
   return s;
 }
 

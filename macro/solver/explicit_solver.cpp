@@ -70,7 +70,7 @@ void ExplicitSolver::initialize() {
   constrain_velocities();
   p_.x_prev = p_.x;
   shapes_.rebuild(options_.rk, p_.x.data(), p_.support.data(), p_.n, second_options());
-  compute_forces();
+  compute_forces(dt());
   if (sphere_) dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
   f_ext_old_ = p_.f_ext;
   f_contact_old_ = p_.f_contact;
@@ -140,7 +140,7 @@ void ExplicitSolver::compute_accelerations(double dt) {
 
   if (options_.strain_configuration == StrainConfiguration::Midpoint)
     shapes_.rebuild(options_.rk, p_.x.data(), p_.support.data(), p_.n, second_options());
-  compute_forces();
+  compute_forces(dt);
   if (sphere_) {
     dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
     // Work of the contact pair forces over the step (trapezoid), on the particles and on the sphere;
@@ -175,7 +175,7 @@ void ExplicitSolver::compute_accelerations(double dt) {
   std::copy(p_.f_ext.begin(), p_.f_ext.end(), f_ext_old_.begin());
 }
 
-void ExplicitSolver::compute_forces() {
+void ExplicitSolver::compute_forces(double dt) {
   force_.compute(shapes_, p_.stress.data(), p_.bulk_q.data(), p_.volume.data(), p_.n, p_.f_int.data(),
                  p_.stress_grad.empty() ? nullptr : p_.stress_grad.data());
   const std::int64_t n = static_cast<std::int64_t>(p_.n);
@@ -197,7 +197,7 @@ void ExplicitSolver::compute_forces() {
   }
   wall_force_ = wall_total;
   if (sphere_) {
-    contact_ = sphere_contact_forces(*sphere_, p_, contact_k_.data(), min_contact_radius_, p_.f_contact.data());
+    contact_ = sphere_contact_forces(*sphere_, p_, contact_k_.data(), min_contact_radius_, dt, p_.f_contact.data());
     sphere_->force = contact_.force_on_sphere;
   }
   // Prescribed velocities: the reaction cancels every other force (constant velocity, a = 0), so the

@@ -121,7 +121,8 @@ class ExplicitSolver {
 
  private:
   const SecondGradientOptions* second_options() const;  // null without NSNI
-  void compute_forces();  // f_int, f_ext and a at the current configuration (shapes_ up to date)
+  // f_int, f_ext and a at the current configuration (shapes_ up to date); dt: the step (friction's cap).
+  void compute_forces(double dt);
   void update_momentum_and_kinetic();
   StepFailure attempt(double h);  // one velocity Verlet step of size h and the checks
   void save_state();

@@ -14,6 +14,8 @@ void RigidSphere::validate() const {
     throw std::invalid_argument("RigidSphere: mass and radius must be finite and > 0");
   if (!(contact.penalty_scale > 0) || !(contact.contact_radius_factor > 0))
     throw std::invalid_argument("RigidSphere: penalty_scale and contact_radius_factor must be > 0");
+  if (!(contact.friction_coefficient >= 0) || !std::isfinite(contact.friction_coefficient))
+    throw std::invalid_argument("RigidSphere: friction_coefficient must be finite and >= 0");
   for (int d = 0; d < 3; ++d)
     if (!std::isfinite(x[d]) || !std::isfinite(v[d]))
       throw std::invalid_argument("RigidSphere: position and velocity must be finite");
@@ -29,13 +31,14 @@ void sphere_contact_stiffness(const Particles& p, const SphereContactOptions& op
 }
 
 SphereContactSums sphere_contact_forces(const RigidSphere& s, const Particles& p, const double* k,
-                                        double min_contact_radius, double* f_contact) {
+                                        double min_contact_radius, double dt, double* f_contact) {
   const std::int64_t n = static_cast<std::int64_t>(p.n);
-  double fx = 0.0, fy = 0.0, fz = 0.0, energy = 0.0, ksum = 0.0;
+  double fx = 0.0, fy = 0.0, fz = 0.0, energy = 0.0, ksum = 0.0, friction_power = 0.0;
+  const double mu = s.contact.friction_coefficient;
   double dt_min = std::numeric_limits<double>::infinity();
   std::int64_t count = 0;
   const double reach_factor = s.contact.contact_radius_factor;
-#pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, energy, ksum, count) reduction(min : dt_min) if (n >= kParallelMinParticles)
+#pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, energy, ksum, friction_power, count) reduction(min : dt_min) if (n >= kParallelMinParticles)
   for (std::int64_t i = 0; i < n; ++i) {
     double* f = f_contact + 3 * i;
     f[0] = f[1] = f[2] = 0.0;
@@ -50,6 +53,21 @@ SphereContactSums sphere_contact_forces(const RigidSphere& s, const Particles& p
     const double delta = reach - d;
     const double magnitude = k[i] * delta;
     for (int c = 0; c < 3; ++c) f[c] = magnitude * r[c] / d;
+    if (mu > 0.0) {
+      const double* v = p.v.data() + 3 * i;
+      double w[3], wn = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        w[c] = v[c] - s.v[c];
+        wn += w[c] * r[c] / d;
+      }
+      for (int c = 0; c < 3; ++c) w[c] -= wn * r[c] / d;  // tangential part
+      const double wt = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+      if (wt > 0.0) {
+        const double ft = std::min(mu * magnitude, p.mass[i] * wt / dt);
+        for (int c = 0; c < 3; ++c) f[c] -= ft * w[c] / wt;
+        friction_power -= ft * wt;
+      }
+    }
     fx -= f[0];
     fy -= f[1];
     fz -= f[2];
@@ -61,6 +79,7 @@ SphereContactSums sphere_contact_forces(const RigidSphere& s, const Particles& p
   SphereContactSums sums;
   sums.force_on_sphere = {fx, fy, fz};
   sums.stored_energy = energy;
+  sums.friction_power = friction_power;
   sums.stiffness_sum = ksum;
   sums.particles_in_contact = count;
   sums.critical_step = count > 0 ? std::min(dt_min, 2.0 * std::sqrt(s.mass_kg / ksum)) : dt_min;
