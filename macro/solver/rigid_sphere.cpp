@@ -33,12 +33,12 @@ void sphere_contact_stiffness(const Particles& p, const SphereContactOptions& op
 SphereContactSums sphere_contact_forces(const RigidSphere& s, const Particles& p, const double* k,
                                         double min_contact_radius, double dt, double* f_contact) {
   const std::int64_t n = static_cast<std::int64_t>(p.n);
-  double fx = 0.0, fy = 0.0, fz = 0.0, energy = 0.0, ksum = 0.0, friction_power = 0.0;
+  double fx = 0.0, fy = 0.0, fz = 0.0, energy = 0.0, ksum = 0.0;
   const double mu = s.contact.friction_coefficient;
   double dt_min = std::numeric_limits<double>::infinity();
   std::int64_t count = 0;
   const double reach_factor = s.contact.contact_radius_factor;
-#pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, energy, ksum, friction_power, count) reduction(min : dt_min) if (n >= kParallelMinParticles)
+#pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, energy, ksum, count) reduction(min : dt_min) if (n >= kParallelMinParticles)
   for (std::int64_t i = 0; i < n; ++i) {
     double* f = f_contact + 3 * i;
     f[0] = f[1] = f[2] = 0.0;
@@ -65,7 +65,6 @@ SphereContactSums sphere_contact_forces(const RigidSphere& s, const Particles& p
       if (wt > 0.0) {
         const double ft = std::min(mu * magnitude, p.mass[i] * wt / dt);
         for (int c = 0; c < 3; ++c) f[c] -= ft * w[c] / wt;
-        friction_power -= ft * wt;
       }
     }
     fx -= f[0];
@@ -79,7 +78,6 @@ SphereContactSums sphere_contact_forces(const RigidSphere& s, const Particles& p
   SphereContactSums sums;
   sums.force_on_sphere = {fx, fy, fz};
   sums.stored_energy = energy;
-  sums.friction_power = friction_power;
   sums.stiffness_sum = ksum;
   sums.particles_in_contact = count;
   sums.critical_step = count > 0 ? std::min(dt_min, 2.0 * std::sqrt(s.mass_kg / ksum)) : dt_min;

@@ -2,14 +2,14 @@
 // The projectile: a free rigid sphere (mass, radius, position, velocity) in penalty contact with the
 // particles, frictionless by default (PHYSICS.md section 5), Coulomb friction as an option.
 //
-// Contact model (penalty, normal only). Each particle I carries a contact radius r_I =
+// Contact model (penalty; the normal force first, friction below). Each particle I carries a contact radius r_I =
 // contact_radius_factor * h_I (default h_I / 2: the particle's half spacing, so the body's surface and
 // not its particle centres meets the sphere, as for the planar walls). With d = |x_I - x_s| and the
 // overlap delta_I = R + r_I - d > 0, the pair force
 //     f_I = k_I delta_I n_I on the particle,  -f_I on the sphere,  n_I = (x_I - x_s) / d,
 // is equal and opposite by construction, so the contact conserves linear momentum exactly (to
-// round-off); it is central (along the line of centres) and the sphere is frictionless, so it exerts
-// no torque on the sphere, whose spin is therefore not tracked. The stiffness
+// round-off); it is central (along the line of centres), so it exerts no torque on the sphere, whose
+// spin is therefore not tracked. The stiffness
 //     k_I = penalty_scale * rho0 c0^2 h_I
 // is the stiffness of a cube of the undeformed material of side h_I (contact frequency sqrt(k/m_I) =
 // c0/h_I, within the stable step at scale 1) and is FIXED per particle when the solver initializes:
@@ -63,7 +63,6 @@ struct RigidSphere {
 struct SphereContactSums {
   Vec3 force_on_sphere{};            // N
   double stored_energy = 0.0;        // sum 1/2 k_I delta_I^2, J
-  double friction_power = 0.0;       // sum f_t . w (<= 0), W
   double stiffness_sum = 0.0;        // sum of k_I over the particles in contact, N/m
   double critical_step = 0.0;        // s (infinity when nothing touches)
   std::int64_t particles_in_contact = 0;
