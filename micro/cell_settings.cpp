@@ -53,7 +53,6 @@ void read_cell(const Config& c, CellSettings& s, double size_override_m, const s
   s.mesh.boundary_ratio = disc.number("boundary_ratio", Range{0.0, 1.0, true, false});
   s.mesh.min_nodes_per_pore = static_cast<int>(disc.integer("min_nodes_per_pore", Range::closed(4, 1000)));
   s.mesh.grading = disc.number("grading", Range::positive());
-  const double h = s.mesh.nominal_spacing_m;
 
   const Config por = c.section("porosity");
   o.porosity.tolerance = por.number("tolerance", Range::positive());
@@ -63,17 +62,18 @@ void read_cell(const Config& c, CellSettings& s, double size_override_m, const s
   o.porosity.max_draws = por.integer("max_draws", Range::closed(1, 1e9));
 
   const Config place = c.section("placement");
-  o.placement.min_ligament_m = place.number("min_ligament_spacings", Range::positive()) * h;
+  // Geometry lengths are in metres, not in mesh spacings: a resolution study must change the
+  // discretization of one and the same microstructure.
+  o.placement.min_ligament_m = place.number("min_ligament_m", Range::positive());
   o.placement.max_attempts_per_pore = place.integer("max_attempts_per_pore", Range::closed(1, 1e9));
 
   const Config seeds = c.section("seeds");
   o.seeds.per_pore = static_cast<int>(seeds.integer("per_pore", Range::closed(0, 2)));
-  const double length_spacings = seeds.number("length_spacings", Range::positive());
-  o.seeds.length_m = length_spacings * h;
+  o.seeds.length_m = seeds.number("length_m", Range::positive());
   if (!(2.0 * o.seeds.length_m < o.placement.min_ligament_m))
-    seeds.fail("length_spacings", fmt::format("value {:g} must be below half of placement.min_ligament_spacings ({:g}), "
-                                              "so that seeds cannot reach another pore, seed or edge",
-                                              length_spacings, o.placement.min_ligament_m / h));
+    seeds.fail("length_m", fmt::format("value {:g} must be below half of placement.min_ligament_m ({:g}), "
+                                       "so that seeds cannot reach another pore, seed or edge",
+                                       o.seeds.length_m, o.placement.min_ligament_m));
   o.seeds.tilt_rad = seeds.number("tilt_deg", Range::open(-90.0, 90.0)) * M_PI / 180.0;
 
   const Config pic = c.section("picture");
@@ -133,7 +133,7 @@ void rethrow_as_input_error(const CellGenerationError& e, const CellSettings& s,
     case R::UnreachablePorosity:
       throw_input_error(s.microstructure_file, "area_porosity", e.what());
     case R::PlacementFailed:
-      throw_input_error(cell_config_path, "placement.min_ligament_spacings", e.what());
+      throw_input_error(cell_config_path, "placement.min_ligament_m", e.what());
     case R::BadOption:
       break;
   }

@@ -79,12 +79,12 @@ TEST(microCellIo, BadInputNamesFileKeyAndReason) {
   EXPECT_EQ(error({"cell_size_m=0.0003"}),
             kCellConfig + ": key 'cell_size_m': cell side 0.0003 m cannot hold the smallest pore (7.7e-05 m) with two "
                           "ligaments of 0.00015 m");
-  EXPECT_EQ(error({"seeds.length_spacings=2"}),
-            kCellConfig + ": key 'seeds.length_spacings': value 2 must be below half of "
-                          "placement.min_ligament_spacings (3), so that seeds cannot reach another pore, seed or edge");
+  EXPECT_EQ(error({"seeds.length_m=1e-4"}),
+            kCellConfig + ": key 'seeds.length_m': value 0.0001 must be below half of "
+                          "placement.min_ligament_m (0.00015), so that seeds cannot reach another pore, seed or edge");
   EXPECT_EQ(error({"loading_direction=z"}), kCellConfig + ": key 'loading_direction': value 'z' is not one of: x, y");
-  EXPECT_EQ(error({"placement.min_ligament_spacing=3"}),
-            kCellConfig + ": key 'placement.min_ligament_spacing': unknown key (did you mean 'min_ligament_spacings'?)");
+  EXPECT_EQ(error({"placement.min_ligament=3"}),
+            kCellConfig + ": key 'placement.min_ligament': unknown key (did you mean 'min_ligament_m'?)");
 }
 
 TEST(microCellIo, UnreachablePorosityIsBadInput) {

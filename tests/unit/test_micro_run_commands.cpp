@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "analysis/cell_analysis_settings.hpp"
 #include "cohesive_bar.hpp"
 #include "run_commands.hpp"
 #include "test_support.hpp"
@@ -305,10 +306,12 @@ TEST_F(MicroRunCommands, EnsembleBadConfigExitsTwo) {
 }
 
 TEST_F(MicroRunCommands, ShippedConfigsAreValid) {
-  // The data/ files parse and validate through the same readers (a factory reading no keys accepts
-  // the empty analysis section); the first cell is generated and meshed, then the probe stops it.
+  // The data/ files parse and validate through the same readers (the probe reads the analysis
+  // section with the fracture solver's reader); the first cell is generated and meshed, then the
+  // probe stops it.
   int built = 0;
-  const CellAnalyzerFactory probe = [&built](const Config&) -> CellAnalyzer {
+  const CellAnalyzerFactory probe = [&built](const Config& analysis) -> CellAnalyzer {
+    (void)read_cell_analysis_options(analysis);
     ++built;
     return [](const CellJob& job, const StateObserver&) -> CellResponse {
       EXPECT_TRUE(job.mesh);  // the shipped cell config meshes
