@@ -47,6 +47,9 @@ def number(row, key, path, what):
     return float(value)
 
 
+STRAIN = {0: "midpoint", 1: "end", 2: "endpoint average"}  # bench_solver.cpp's strain argument
+
+
 def parse_arguments(run_name):
     """'BM_PaperDisc100/threads:2/support_x10:25/nsni:1' -> ('BM_PaperDisc100', {'threads': 2, ...})."""
     parts = run_name.split("/")
@@ -95,7 +98,8 @@ def read_macro(path):
         family, args = parse_arguments(run_name)
         entry = {"name": run_name, "benchmark": family, "threads": args.get("threads"),
                  "support_factor": args["support_x10"] / 10.0 if isinstance(args.get("support_x10"), int) else None,
-                 "nsni": bool(args["nsni"]) if isinstance(args.get("nsni"), int) else None}
+                 "nsni": bool(args["nsni"]) if isinstance(args.get("nsni"), int) else None,
+                 "strain": STRAIN.get(args.get("strain"))}
         rows = [group["mean"]] if group["mean"] is not None else group["plain"]
         entry["source"] = "mean of repetitions" if group["mean"] is not None else (
             "single run" if len(rows) == 1 else f"average of {len(rows)} runs")
@@ -165,6 +169,8 @@ def describe(run):
         parts.append(f"{run['support_factor']:.1f} h")
     if run["nsni"] is not None:
         parts.append("NSNI" if run["nsni"] else "no NSNI")
+    if run.get("strain"):
+        parts.append(run["strain"])
     return f"{label} ({', '.join(parts)})" if parts else label
 
 

@@ -69,8 +69,10 @@ SolverOptions read_solver(const Config& c) {
   o.support_factor = c.number("support_factor", Range::closed(1.2, 3.0));
   o.cfl = c.number("cfl", Range{0.0, 1.0, true, false});
   o.stabilization = c.flag("nsni") ? Stabilization::Nsni : Stabilization::None;
-  o.strain_configuration =
-      c.choice("strain_configuration", {"midpoint", "end"}) == "midpoint" ? StrainConfiguration::Midpoint : StrainConfiguration::End;
+  const std::string strain = c.choice("strain_configuration", {"midpoint", "end", "endpoint_average"});
+  o.strain_configuration = strain == "midpoint" ? StrainConfiguration::Midpoint
+                           : strain == "end"    ? StrainConfiguration::End
+                                                : StrainConfiguration::EndpointAverage;
   const Config v = c.section("bulk_viscosity");
   o.viscosity.c_linear = v.number("linear", Range::non_negative());
   o.viscosity.c_quadratic = v.number("quadratic", Range::non_negative());

@@ -1,14 +1,18 @@
 // Speed of the explicit step; items are particle-steps.
 //  BM_ElasticStep: elastic box of 32 x 32 x 32 = 32 768 particles, support 2 h, moving and deforming
 //    so the lists are really rebuilt. Arguments: threads, strain configuration (0 midpoint, 1 end of
-//    step), stabilization (0 none, 1 NSNI).
+//    step, 2 endpoint average), stabilization (0 none, 1 NSNI).
 //  BM_PaperDisc: the paper-scale target of data/macro_disc_elastic.json (disc 406.4 x 31.75 mm, spacing
 //    3.0 mm at the axis growing to 4.5 mm at the rim: 79 957 particles; elastic stand-in with the AFC
-//    moduli) hit by the paper's sphere (9.071 g, 6.35 mm) at 817 m/s, already touching the entry face;
-//    midpoint strain. Arguments: threads, support factor x 10 (20: 2.0 h, 25: 2.5 h), NSNI (0/1).
-//    Fixed 8 steps per configuration (about a minute for all eight on this machine).
-//  BM_PaperDisc100: the figure, the same disc in the shipped configuration (2.5 h, NSNI) over
-//    100 steps, on 1 and 2 threads (a few minutes; compared with LAMMPS by pipelines/bench_ratio.py).
+//    moduli) hit by the paper's sphere (9.071 g, 6.35 mm) at 817 m/s, already touching the entry face.
+//    Arguments: threads, support factor x 10 (20: 2.0 h, 25: 2.5 h), NSNI (0/1), strain configuration
+//    (as above). Fixed 8 steps per configuration: the eight of the product with midpoint strain (about
+//    a minute on this machine; comparable with the earlier figures), and end / endpoint average at
+//    2.5 h with NSNI; the three strain configurations of the shipped setting alone:
+//    --benchmark_filter='PaperDisc/.*/support_x10:25/nsni:1/'.
+//  BM_PaperDisc100: the figure, the same disc in the shipped configuration (2.5 h, NSNI,
+//    endpoint-average strain) over 100 steps, on 1 and 2 threads (a few minutes; compared with LAMMPS
+//    by pipelines/bench_ratio.py).
 //  Counters of both: particles, searches/reuses (RK rebuilds in the timed steps that searched the
 //    neighbours afresh / reused the Verlet candidates), in_contact, peak_rss_MiB. peak_rss_MiB is the
 //    process's peak resident set so far (getrusage ru_maxrss after the timed steps), not the
@@ -32,6 +36,10 @@ namespace {
 
 using namespace uhpc::macro;
 
+StrainConfiguration strain_configuration(std::int64_t arg) {
+  return arg == 0 ? StrainConfiguration::Midpoint : arg == 1 ? StrainConfiguration::End : StrainConfiguration::EndpointAverage;
+}
+
 // Peak resident set of the whole process so far, MiB (Linux: ru_maxrss in KiB); not reset between
 // benchmarks, so it is the peak of this one only when it runs alone (--benchmark_filter).
 double peak_rss_mib() {
@@ -45,7 +53,7 @@ void BM_ElasticStep(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
 #endif
   SolverOptions options;
-  options.strain_configuration = state.range(1) == 0 ? StrainConfiguration::Midpoint : StrainConfiguration::End;
+  options.strain_configuration = strain_configuration(state.range(1));
   options.stabilization = state.range(2) == 0 ? Stabilization::None : Stabilization::Nsni;
   const ParticleBody body = box_body(0.32, 0.32, 0.32, 0.01);
   ExplicitSolver solver(Particles::from_body(body, 2500.0, options.support_factor),
@@ -59,11 +67,13 @@ void BM_ElasticStep(benchmark::State& state) {
 }
 
 BENCHMARK(BM_ElasticStep)
-    ->ArgNames({"threads", "end_config", "nsni"})
+    ->ArgNames({"threads", "strain", "nsni"})
     ->Args({1, 0, 1})
     ->Args({2, 0, 1})
     ->Args({1, 1, 1})
     ->Args({2, 1, 1})
+    ->Args({1, 2, 1})
+    ->Args({2, 2, 1})
     ->Args({1, 1, 0})
     ->Args({2, 1, 0})
     ->Unit(benchmark::kMillisecond)
@@ -77,6 +87,7 @@ void BM_PaperDisc(benchmark::State& state) {
   SolverOptions options;
   options.support_factor = 0.1 * static_cast<double>(state.range(1));
   options.stabilization = state.range(2) == 0 ? Stabilization::None : Stabilization::Nsni;
+  options.strain_configuration = strain_configuration(state.range(3));
   DiscSpec spec;
   spec.radius_m = 0.2032;
   spec.thickness_m = 0.03175;
@@ -108,18 +119,22 @@ void BM_PaperDisc(benchmark::State& state) {
 }
 
 BENCHMARK(BM_PaperDisc)
-    ->ArgNames({"threads", "support_x10", "nsni"})
-    ->ArgsProduct({{1, 2}, {20, 25}, {0, 1}})
+    ->ArgNames({"threads", "support_x10", "nsni", "strain"})
+    ->ArgsProduct({{1, 2}, {20, 25}, {0, 1}, {0}})
+    ->Args({1, 25, 1, 1})
+    ->Args({2, 25, 1, 1})
+    ->Args({1, 25, 1, 2})
+    ->Args({2, 25, 1, 2})
     ->Iterations(8)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// The figure: shipped configuration (2.5 h, NSNI), 100 steps.
+// The figure: shipped configuration (2.5 h, NSNI, endpoint-average strain), 100 steps.
 BENCHMARK(BM_PaperDisc)
     ->Name("BM_PaperDisc100")
-    ->ArgNames({"threads", "support_x10", "nsni"})
-    ->Args({1, 25, 1})
-    ->Args({2, 25, 1})
+    ->ArgNames({"threads", "support_x10", "nsni", "strain"})
+    ->Args({1, 25, 1, 2})
+    ->Args({2, 25, 1, 2})
     ->Iterations(100)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

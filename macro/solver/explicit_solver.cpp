@@ -12,6 +12,15 @@
 
 namespace uhpc::macro {
 
+namespace {
+// second <- (first + second) / 2, elementwise (the endpoint-average strain rate).
+void average_into(const std::vector<double>& first, std::vector<double>& second) {
+  const std::int64_t n = static_cast<std::int64_t>(second.size());
+#pragma omp parallel for schedule(static) if (n >= 9 * kParallelMinParticles)
+  for (std::int64_t i = 0; i < n; ++i) second[i] = 0.5 * (first[i] + second[i]);
+}
+}  // namespace
+
 ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const SolverOptions& options)
     : p_(std::move(particles)), material_(std::move(material)), options_(options) {
   const std::size_t states = std::visit([](const auto& b) { return b.state.size(); }, material_);
@@ -34,6 +43,10 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
     p_.stress_grad.assign(27 * p_.n, 0.0);
     p_.vel_grad_grad.assign(27 * p_.n, 0.0);
   }
+  if (options_.strain_configuration == StrainConfiguration::EndpointAverage) {
+    vel_grad_start_.assign(9 * p_.n, 0.0);
+    if (second_options()) vel_grad_grad_start_.assign(27 * p_.n, 0.0);
+  }
 }
 
 void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
@@ -45,6 +58,15 @@ void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
 
 const SecondGradientOptions* ExplicitSolver::second_options() const {
   return options_.stabilization == Stabilization::Nsni ? &options_.second_gradients : nullptr;
+}
+
+void ExplicitSolver::rebuild_shapes(const double* x) {
+  shapes_.rebuild(options_.rk, x, p_.support.data(), p_.n, second_options());
+}
+
+void ExplicitSolver::velocity_gradients(double* L, double* G) const {
+  velocity_gradient(shapes_, p_.v.data(), p_.n, L);
+  if (G) velocity_gradient_gradient(shapes_, p_.v.data(), p_.n, G);
 }
 
 void ExplicitSolver::initialize() {
@@ -69,7 +91,8 @@ void ExplicitSolver::initialize() {
   domain_ = options_.domain ? *options_.domain : default_domain();
   constrain_velocities();
   p_.x_prev = p_.x;
-  shapes_.rebuild(options_.rk, p_.x.data(), p_.support.data(), p_.n, second_options());
+  rebuild_shapes(p_.x.data());
+  shapes_at_x_ = true;
   compute_forces(dt());
   if (sphere_) dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
   f_ext_old_ = p_.f_ext;
@@ -120,15 +143,28 @@ void ExplicitSolver::compute_accelerations(double dt) {
   // A position that is not finite or outside the domain fails the step (attempt() names it); stop
   // here, before the neighbour search meets it.
   if (first_non_finite(p_) >= 0 || first_outside(p_, domain_) >= 0) return;
+  const StrainConfiguration config = options_.strain_configuration;
+  const bool nsni = second_options() != nullptr;
+  if (config == StrainConfiguration::EndpointAverage) {
+    // The x_n gradients: those of the last force evaluation, unless a restored state left the failed
+    // attempt's in shapes_ (x_prev is the restored x). The velocity gradient reads only the stored
+    // lists and values, not the positions, so the drift above does not disturb them.
+    if (!shapes_at_x_) rebuild_shapes(p_.x_prev.data());
+    velocity_gradients(vel_grad_start_.data(), nsni ? vel_grad_grad_start_.data() : nullptr);
+  }
   const double* x_strain = p_.x.data();
-  if (options_.strain_configuration == StrainConfiguration::Midpoint) {
+  if (config == StrainConfiguration::Midpoint) {
 #pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
     for (std::int64_t i = 0; i < 3 * n; ++i) p_.x_mid[i] = 0.5 * (p_.x_prev[i] + p_.x[i]);
     x_strain = p_.x_mid.data();
   }
-  shapes_.rebuild(options_.rk, x_strain, p_.support.data(), p_.n, second_options());
-  velocity_gradient(shapes_, p_.v.data(), p_.n, p_.vel_grad.data());
-  if (second_options()) velocity_gradient_gradient(shapes_, p_.v.data(), p_.n, p_.vel_grad_grad.data());
+  rebuild_shapes(x_strain);
+  shapes_at_x_ = config != StrainConfiguration::Midpoint;
+  velocity_gradients(p_.vel_grad.data(), nsni ? p_.vel_grad_grad.data() : nullptr);
+  if (config == StrainConfiguration::EndpointAverage) {
+    average_into(vel_grad_start_, p_.vel_grad);
+    if (nsni) average_into(vel_grad_grad_start_, p_.vel_grad_grad);
+  }
 
   const StressUpdateSums sums =
       std::visit([&](auto& block) { return update_stresses(block, p_, dt, options_.viscosity); }, material_);
@@ -138,8 +174,10 @@ void ExplicitSolver::compute_accelerations(double dt) {
   dt_ = options_.cfl * sums.min_critical_step;
   if (sums.inverted >= 0) inverted_ = sums.inverted;
 
-  if (options_.strain_configuration == StrainConfiguration::Midpoint)
-    shapes_.rebuild(options_.rk, p_.x.data(), p_.support.data(), p_.n, second_options());
+  if (config == StrainConfiguration::Midpoint) {
+    rebuild_shapes(p_.x.data());
+    shapes_at_x_ = true;
+  }
   compute_forces(dt);
   if (sphere_) {
     dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
@@ -362,8 +400,10 @@ void ExplicitSolver::save_state() {
   saved_.wall_force = wall_force_;
 }
 
-// The shape cache is not restored: every step rebuilds it before using it.
+// The shape cache is not restored: every step rebuilds it before using it, and EndpointAverage, which
+// reads it first, rebuilds it at the restored positions (shapes_at_x_).
 void ExplicitSolver::restore_state() {
+  shapes_at_x_ = false;
   copy_evolving_state(saved_.p, p_);
   material_ = *saved_.material;
   f_ext_old_ = saved_.f_ext_old;

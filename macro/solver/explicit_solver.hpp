@@ -2,13 +2,15 @@
 // The 3D explicit semi-Lagrangian RKPM solver core: one body of particles, one material, walls and
 // prescribed velocities. Each step (velocity Verlet, verlet.hpp):
 //   1. v += dt/2 a, constraints, x += dt v                                  (integrator)
-//   2. RK gradients at the mid-step configuration (x_n + x_n+1)/2 with exact neighbour lists (a
-//      cell-list search, or its Verlet-skin candidates filtered: SolverOptions::neighbour_skin)
-//      (StrainConfiguration::Midpoint) or at x_n+1 (End); L_I = sum_J v_J (x) grad Psi_J(x_I)
+//   2. L_I = sum_J v_J (x) grad Psi_J(x_I) with v the half-step velocity and RK gradients with exact
+//      neighbour lists (a cell-list search, or its Verlet-skin candidates filtered:
+//      SolverOptions::neighbour_skin) rebuilt at the mid-step configuration (x_n + x_n+1)/2
+//      (StrainConfiguration::Midpoint) or at x_n+1 (End); EndpointAverage: the mean of L with the
+//      gradients still held from the last force evaluation (at x_n) and with those rebuilt at x_n+1
 //   3. constitutive update per particle (stress_update.hpp): rotation, law, volume, bulk viscosity,
 //      critical step
-//   4. RK gradients at x_n+1 (Midpoint only: End reuses step 2), nodal-integration internal forces,
-//      wall and reaction forces, a = f / m
+//   4. RK gradients at x_n+1 (Midpoint only: End and EndpointAverage reuse step 2's), nodal-integration
+//      internal forces, wall and reaction forces, a = f / m
 //   5. v += dt/2 a, constraints; energies and momentum; next dt = CFL * min critical step
 // The rigid sphere (rigid_sphere.hpp), when there is one, gets the same kicks and drift in lockstep:
 // its half kicks bracket the particles' Verlet step and it drifts where they drift (at the start of
@@ -40,6 +42,10 @@ namespace uhpc::macro {
 enum class StrainConfiguration : std::uint8_t {
   Midpoint,  // strain rate at (x_n + x_n+1)/2: second order, objective, time-reversible; 2 RK builds/step
   End,       // strain rate at x_n+1: one RK build per step, first order in the configuration
+  // L = (grad_x_n v + grad_x_n+1 v) / 2: the x_n gradients are the previous step's force evaluation's,
+  // so one RK build and one extra gradient pass per step; time-symmetric, second order (the mean of
+  // the end gradients is the midpoint one to O(dt^2)), a rigid rotation gives a skew L
+  EndpointAverage,
 };
 
 enum class Stabilization : std::uint8_t {
@@ -52,7 +58,7 @@ struct SolverOptions {
   double support_factor = 2.0; // a_I = support_factor * h_I
   double cfl = 0.4;            // dt = cfl * min_I critical step (PHYSICS.md: 0.3 - 0.5)
   double fixed_dt_s = 0.0;     // > 0: use this step instead (reversibility studies); must be <= stable
-  StrainConfiguration strain_configuration = StrainConfiguration::Midpoint;
+  StrainConfiguration strain_configuration = StrainConfiguration::EndpointAverage;
   BulkViscosity viscosity;     // {0, 0} switches it off
   Stabilization stabilization = Stabilization::Nsni;
   SecondGradientOptions second_gradients;  // NSNI strain gradients (quadratic implicit second derivatives)
@@ -128,6 +134,9 @@ class ExplicitSolver {
   void save_state();
   Region default_domain() const;
   void restore_state();
+  void rebuild_shapes(const double* x);  // shapes_ at the n points x (the particles' supports)
+  // L (9n) and, with G non-null (NSNI), dL/dx (27n) of the current velocities with shapes_.
+  void velocity_gradients(double* L, double* G) const;
 
   Particles p_;
   MaterialSet material_;
@@ -135,6 +144,10 @@ class ExplicitSolver {
   std::vector<Wall> walls_;
   std::vector<PrescribedVelocity> prescribed_;
   ShapeCache shapes_;
+  // shapes_ were built at the current x (false after restore_state: they are the failed attempt's).
+  bool shapes_at_x_ = false;
+  // EndpointAverage: L and (NSNI) dL/dx with the start-of-step gradients; sized once in the constructor.
+  std::vector<double> vel_grad_start_, vel_grad_grad_start_;
   InternalForce force_;
   std::vector<double> f_ext_old_, f_contact_old_;
   std::optional<RigidSphere> sphere_;

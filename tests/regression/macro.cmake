@@ -25,6 +25,9 @@ uhpc_bad_input_case(NAME macro_bad_sdel_handoff
 uhpc_bad_input_case(NAME macro_unknown_rim_support
   STDERR "error: data/macro_elastic_block.json: key 'support.rim': value 'clamped' is not one of: free, fixed"
   COMMAND ${_macro} ${_macro_case} --set support.rim=clamped)
+uhpc_bad_input_case(NAME macro_unknown_strain_configuration
+  STDERR "error: data/macro_elastic_block.json: key 'solver.strain_configuration': value 'mid' is not one of: midpoint, end, endpoint_average"
+  COMMAND ${_macro} ${_macro_case} --set solver.strain_configuration=mid)
 uhpc_bad_input_case(NAME macro_sphere_larger_than_target
   STDERR "error: data/macro_elastic_block.json: key 'projectile.radius_m': the sphere must be smaller than the target's half width"
   COMMAND ${_macro} ${_macro_case} --set projectile.radius_m=0.03)

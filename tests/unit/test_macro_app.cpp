@@ -12,9 +12,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "case_config.hpp"
 #include "case_setup.hpp"
 #include "macro_run.hpp"
 #include "test_support.hpp"
+#include "uhpc/config.hpp"
 #include "uhpc/errors.hpp"
 #include "uhpc/hdf5_io.hpp"
 
@@ -135,6 +137,16 @@ TEST_F(MacroApp, AValidSdelHandoffIsAcceptedByTheElasticLaw) {
   EXPECT_GT(r.at("steps").get<int>(), 0);
   EXPECT_TRUE(std::filesystem::exists(dir_ / "fields.xdmf"));
   EXPECT_TRUE(r.at("residual_velocity_m_s").is_null());  // still in flight: no residual velocity
+}
+
+TEST(MacroCaseConfig, StrainConfigurationNames) {
+  const std::string path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  const auto read = [&](const std::string& name) {
+    return read_case(Config::load(path, {"solver.strain_configuration=" + name})).solver.strain_configuration;
+  };
+  EXPECT_EQ(read("midpoint"), StrainConfiguration::Midpoint);
+  EXPECT_EQ(read("end"), StrainConfiguration::End);
+  EXPECT_EQ(read("endpoint_average"), StrainConfiguration::EndpointAverage);
 }
 
 }  // namespace

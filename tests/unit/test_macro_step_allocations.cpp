@@ -13,9 +13,15 @@ using uhpc::test::g_allocations;
 namespace uhpc::macro {
 namespace {
 
-TEST(MacroStepAllocations, NoAllocationInsideTheStepLoop) {
+SolverOptions with_strain(StrainConfiguration strain) {
+  SolverOptions o;
+  o.strain_configuration = strain;
+  return o;
+}
+
+void no_allocation_inside_the_step_loop(StrainConfiguration strain) {
   const ParticleBody body = box_body(0.05, 0.04, 0.03, 0.005);
-  SolverOptions options;
+  const SolverOptions options = with_strain(strain);
   ExplicitSolver solver(Particles::from_body(body, 2500.0, options.support_factor),
                         make_material_set(ElasticMaterial(ElasticParams{2500.0, 20e9, 15e9}), body.size()), options);
   set_initial_velocity(solver.particles(), [](const double* x) -> Vec3 { return {50.0 * x[1], -30.0 * x[2], 5.0}; });
@@ -30,11 +36,18 @@ TEST(MacroStepAllocations, NoAllocationInsideTheStepLoop) {
   EXPECT_EQ(g_allocations.load() - before, 0);
 }
 
+TEST(MacroStepAllocations, NoAllocationInsideTheStepLoop) {
+  no_allocation_inside_the_step_loop(SolverOptions{}.strain_configuration);
+}
+TEST(MacroStepAllocations, NoAllocationInsideTheStepLoopWithMidpointStrain) {
+  no_allocation_inside_the_step_loop(StrainConfiguration::Midpoint);
+}
+
 // The same with the rigid sphere pressing into the box during the counted steps (contact forces, the
 // contact ledger and the saved state of the step-collapse guard reuse their memory too).
-TEST(MacroStepAllocations, NoAllocationWithTheSphereInContact) {
+void no_allocation_with_the_sphere_in_contact(StrainConfiguration strain) {
   const ParticleBody body = box_body(0.05, 0.04, 0.03, 0.005);
-  SolverOptions options;
+  SolverOptions options = with_strain(strain);
   options.support_factor = 2.5;  // NSNI at 2.0 is unstable under a point contact (macro/README.md)
   ExplicitSolver solver(Particles::from_body(body, 2500.0, options.support_factor),
                         make_material_set(ElasticMaterial(ElasticParams{2500.0, 20e9, 15e9}), body.size()), options);
@@ -54,6 +67,13 @@ TEST(MacroStepAllocations, NoAllocationWithTheSphereInContact) {
   }
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_GT(in_contact, 20);
+}
+
+TEST(MacroStepAllocations, NoAllocationWithTheSphereInContact) {
+  no_allocation_with_the_sphere_in_contact(SolverOptions{}.strain_configuration);
+}
+TEST(MacroStepAllocations, NoAllocationWithTheSphereInContactWithMidpointStrain) {
+  no_allocation_with_the_sphere_in_contact(StrainConfiguration::Midpoint);
 }
 
 }  // namespace

@@ -48,10 +48,15 @@ ExplicitSolver make_impact(double velocity, double penalty_scale, const SolverOp
   return solver;
 }
 
-SolverOptions shipped_options() {
+SolverOptions shipped_options(StrainConfiguration strain = SolverOptions{}.strain_configuration) {
   SolverOptions o;
   o.support_factor = 2.5;
+  o.strain_configuration = strain;
   return o;
+}
+
+const char* name(StrainConfiguration c) {
+  return c == StrainConfiguration::Midpoint ? "midpoint" : c == StrainConfiguration::End ? "end" : "endpoint average";
 }
 
 double momentum_error(const ExplicitSolver& s) {
@@ -61,8 +66,8 @@ double momentum_error(const ExplicitSolver& s) {
   return std::sqrt(err) / std::fabs(e.momentum_initial[2]);
 }
 
-TEST(MacroSphereContact, ConservesMomentumAndEnergyThroughTheImpact) {
-  ExplicitSolver s = make_impact(100.0, 1.0, shipped_options());
+void conserves_momentum_and_energy(StrainConfiguration strain) {
+  ExplicitSolver s = make_impact(100.0, 1.0, shipped_options(strain));
   double worst_p = 0.0, worst_e = 0.0, worst_ledger_gap = 0.0, peak_stored = 0.0;
   bool touched = false;
   while (s.time() < 6e-5) {
@@ -76,11 +81,11 @@ TEST(MacroSphereContact, ConservesMomentumAndEnergyThroughTheImpact) {
   }
   const double vz = s.sphere().v[2];
   const double block_pz = s.ledger().momentum[2] - s.ledger().momentum_sphere[2];
-  std::printf("sphere 100 m/s into a free elastic block: %lld steps, sphere leaves at %.3f m/s, block momentum "
+  std::printf("sphere 100 m/s into a free elastic block (%s strain): %lld steps, sphere leaves at %.3f m/s, block momentum "
               "%.5f of M v0; worst momentum error %.3e, worst energy balance error %.3e of the initial kinetic "
               "energy; contact ledger vs exact penalty potential %.3e J (peak stored %.3e J), contact energy left "
               "after release %.3e J\n",
-              static_cast<long long>(s.steps()), vz, block_pz / (kMass * 100.0), worst_p, worst_e, worst_ledger_gap,
+              name(strain), static_cast<long long>(s.steps()), vz, block_pz / (kMass * 100.0), worst_p, worst_e, worst_ledger_gap,
               peak_stored, s.ledger().contact);
   EXPECT_TRUE(touched);
   EXPECT_LT(vz, 0.0);                             // it bounced off the elastic block
@@ -91,19 +96,26 @@ TEST(MacroSphereContact, ConservesMomentumAndEnergyThroughTheImpact) {
   EXPECT_EQ(s.step_repeats(), 0);
 }
 
+TEST(MacroSphereContact, ConservesMomentumAndEnergyThroughTheImpact) {
+  conserves_momentum_and_energy(SolverOptions{}.strain_configuration);
+}
+TEST(MacroSphereContact, ConservesMomentumAndEnergyThroughTheImpactWithMidpointStrain) {
+  conserves_momentum_and_energy(StrainConfiguration::Midpoint);
+}
+
 // A stiff penalty (scale 100: contact frequency 10 c/h) cuts the stable step at the first contact to
 // 2 sqrt(m/k) = 0.2 h/c from h/c: the guard sees the new stable step fall below half the step taken and
 // repeats that step with it.
-TEST(MacroSphereContact, StepCollapseGuardRepeatsTheFirstContactStep) {
-  ExplicitSolver s = make_impact(100.0, 100.0, shipped_options());
+void guard_repeats_the_first_contact_step(StrainConfiguration strain) {
+  ExplicitSolver s = make_impact(100.0, 100.0, shipped_options(strain));
   const double dt_free = s.dt();
   int after = -1;
   for (int k = 0; k < 400 && after < 60; ++k) {
     ASSERT_TRUE(s.step());
     if (s.step_repeats() > 0 && after < 0) {
       after = 0;
-      std::printf("guard: repeated %lld time(s) at step %lld: step %.3e s -> %.3e s (%.3f of the free step)\n",
-                  static_cast<long long>(s.step_repeats()), static_cast<long long>(s.steps()), dt_free, s.last_dt(),
+      std::printf("guard (%s strain): repeated %lld time(s) at step %lld: step %.3e s -> %.3e s (%.3f of the free step)\n",
+                  name(strain), static_cast<long long>(s.step_repeats()), static_cast<long long>(s.steps()), dt_free, s.last_dt(),
                   s.last_dt() / dt_free);
       // The rejected attempt's stable step: CFL 2 sqrt(m_I / k_I) = 0.2 (CFL h / c) for scale 100.
       EXPECT_NEAR(s.last_dt() / dt_free, 0.2, 0.002);
@@ -120,7 +132,7 @@ TEST(MacroSphereContact, StepCollapseGuardRepeatsTheFirstContactStep) {
   EXPECT_LT(momentum_error(s), 1e-8);
 
   // The same impact without the guard: the contact spring is integrated with five times its stable step.
-  SolverOptions off = shipped_options();
+  SolverOptions off = shipped_options(strain);
   off.dt_collapse_fraction = 0.0;
   ExplicitSolver u = make_impact(100.0, 100.0, off);
   bool failed = false;
@@ -131,6 +143,15 @@ TEST(MacroSphereContact, StepCollapseGuardRepeatsTheFirstContactStep) {
   }
   std::printf("guard off: %s, worst energy balance error %.3e\n", failed ? "the run failed" : "ran", worst);
   EXPECT_TRUE(failed || worst > 1.0);
+}
+
+// The default (endpoint-average) strain reads the shape functions of the start of the step: the
+// repeated step must rebuild them at the restored positions.
+TEST(MacroSphereContact, StepCollapseGuardRepeatsTheFirstContactStep) {
+  guard_repeats_the_first_contact_step(SolverOptions{}.strain_configuration);
+}
+TEST(MacroSphereContact, StepCollapseGuardRepeatsTheFirstContactStepWithMidpointStrain) {
+  guard_repeats_the_first_contact_step(StrainConfiguration::Midpoint);
 }
 
 // A sphere of radius 0.5 m (the contact is flat within 3 degrees over the block's face, so every normal

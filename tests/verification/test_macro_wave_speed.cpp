@@ -82,5 +82,12 @@ TEST(MacroWaveSpeed, EndOfStepStrainAlsoWithin2Percent) {
   EXPECT_NEAR(r.speed / r.c0, 1.0, 0.02);
 }
 
+TEST(MacroWaveSpeed, EndpointAverageStrainAlsoWithin2Percent) {
+  const WaveResult r = measure(StrainConfiguration::EndpointAverage, 2.5e-3);
+  std::printf("wave speed (endpoint-average strain, h = 2.5 mm): measured %.2f m/s, c0 %.2f m/s, error %+.3f %%\n",
+              r.speed, r.c0, 100.0 * (r.speed / r.c0 - 1.0));
+  EXPECT_NEAR(r.speed / r.c0, 1.0, 0.02);
+}
+
 }  // namespace
 }  // namespace uhpc::macro
