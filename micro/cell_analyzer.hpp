@@ -5,8 +5,8 @@
 // in the tests) plugs in.
 //
 // Wiring (micro_main.cpp), e.g.:
-//   const CellAnalyzerFactory factory = [](const Config& analysis) {
-//     const FractureOptions options = read_fracture_options(analysis);   // typed getters: exit 2 on bad keys
+//   const CellAnalyzerFactory factory = [](const Config& analysis, double curve_end_strain) {
+//     const FractureOptions options = read_fracture_options(analysis, curve_end_strain);  // exit 2 on bad keys
 //     return CellAnalyzer([options](const CellJob& job, const StateObserver& observe) {
 //       return analyze_cell(*job.mesh, job.cell->geometry, options, observe);
 //     });
@@ -43,6 +43,7 @@ struct CellJob {
   std::shared_ptr<const GeneratedCell> cell;
   std::shared_ptr<const CellDiscretization> mesh;  // nullptr when discretization.mesh = false
   nlohmann::json analysis;          // the config's "analysis" section with --set applied, unparsed
+  double curve_end_strain = 0.0;    // the strain the path must reach: the strain grid's end
   std::string analysis_source;      // the config file, for messages about analysis keys
 };
 
@@ -56,9 +57,12 @@ using StateObserver = std::function<void(std::size_t index, const CellState& sta
 using CellAnalyzer = std::function<CellResponse(const CellJob& job, const StateObserver& observe)>;
 
 // Builds the analyzer once per command, before any cell is generated, from the config's "analysis"
-// section. Read every key through the typed getters there: a bad value throws InputError (exit 2)
-// naming the file and 'analysis.<key>', and keys left unread are reported as unknown by the driver's
-// finish() afterwards. The same section reaches each job unparsed (CellJob::analysis).
-using CellAnalyzerFactory = std::function<CellAnalyzer(const Config& analysis)>;
+// section and the strain its paths must reach (the strain grid's end, strain_grid.max_strain: one
+// key for both, so a path can never stop short of the grid; an analyzer with its own stopping
+// strain must reject one below it). Read every key through the typed getters there: a bad value
+// throws InputError (exit 2) naming the file and 'analysis.<key>', and keys left unread are
+// reported as unknown by the driver's finish() afterwards. The same section reaches each job
+// unparsed (CellJob::analysis, CellJob::curve_end_strain).
+using CellAnalyzerFactory = std::function<CellAnalyzer(const Config& analysis, double curve_end_strain)>;
 
 }  // namespace uhpc::micro

@@ -96,7 +96,8 @@ CellResponse run_analyzer(const CellAnalyzer& analyzer, const CellJob& job, cons
 }
 
 std::string cell_hash(const CellJob& job) {
-  return fnv1a64_hex(fmt::format("{}|{:.17g}|{}|{}", job.settings.config_hash, job.size_m, job.seed, job.analysis.dump()));
+  return fnv1a64_hex(fmt::format("{}|{:.17g}|{}|{}|{:.17g}", job.settings.config_hash, job.size_m, job.seed,
+                                 job.analysis.dump(), job.curve_end_strain));
 }
 
 namespace {
@@ -195,6 +196,7 @@ nlohmann::json cell_summary_json(const CellJob& job, const CellResult& r, const 
   j["nodes"] = resp.nodes;
   j["dofs"] = resp.dofs;
   j["enriched_nodes"] = resp.enriched_nodes;
+  j["growth_unloads"] = resp.growth_unloads;
   j["wall_s"] = resp.wall_s;
   j["post_options"] = post_options_json(o);
   j["cell_hash"] = cell_hash(job);
@@ -269,6 +271,7 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
     r.nodes = j.at("nodes").get<std::size_t>();
     r.dofs = j.at("dofs").get<std::size_t>();
     r.enriched_nodes = j.at("enriched_nodes").get<std::size_t>();
+    r.growth_unloads = j.value("growth_unloads", std::size_t{0});  // absent in results made before the fallback existed
     r.wall_s = j.at("wall_s").get<double>();
     const std::lock_guard<std::mutex> lock(hdf5_mutex());
     const H5Reader h5(dir / "curves.h5");

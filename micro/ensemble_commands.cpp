@@ -96,7 +96,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   const Config cfg = Config::load(config_path, overrides);
   const AnalysisEnsembleSettings e = read_settings(cfg);
   const Config analysis = cfg.section("analysis");
-  const CellAnalyzer analyzer = factory(analysis);
+  const CellAnalyzer analyzer = factory(analysis, e.post.grid_max_strain);
   cfg.finish();
   // Validate every size before analysing anything, so bad input fails at once.
   std::vector<CellSettings> per_size;
@@ -128,6 +128,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
     job.settings.seed = job.seed;
     job.cell_config = e.cell_config;
     job.analysis = analysis_json;
+    job.curve_end_strain = e.post.grid_max_strain;
     job.analysis_source = source;
     const std::string hash = cell_hash(job);
     if (std::optional<StoredCell> stored = load_cell_results(job.out_dir, hash, post_hash);

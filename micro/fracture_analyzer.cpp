@@ -7,8 +7,8 @@
 namespace uhpc::micro {
 
 CellAnalyzerFactory fracture_analyzer_factory() {
-  return [](const Config& analysis) -> CellAnalyzer {
-    const CellAnalysisOptions options = read_cell_analysis_options(analysis);
+  return [](const Config& analysis, double curve_end_strain) -> CellAnalyzer {
+    const CellAnalysisOptions options = read_cell_analysis_options(analysis, curve_end_strain);
     return [options](const CellJob& job, const StateObserver& observe) {
       if (!job.mesh)
         throw InputError(job.cell_config + ": key 'discretization.mesh': must be true for the crack analysis");

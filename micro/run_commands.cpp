@@ -27,7 +27,7 @@ int run_cell_command(const std::string& config_path, const std::vector<std::stri
   if (fs::path(cell_config).is_relative()) cell_config = (fs::path(cfg.source()).parent_path() / cell_config).string();
   const PostOptions post = read_post_options(cfg);
   const Config analysis = cfg.section("analysis");
-  const CellAnalyzer analyzer = factory(analysis);  // reads (validates) the analysis keys it knows
+  const CellAnalyzer analyzer = factory(analysis, post.grid_max_strain);  // reads (validates) its keys
   cfg.finish();
   const CellSettings settings = load_cell_settings(cell_config, cell_overrides);
 
@@ -38,6 +38,7 @@ int run_cell_command(const std::string& config_path, const std::vector<std::stri
   job.settings = settings;
   job.cell_config = cell_config;
   job.analysis = analysis.json();
+  job.curve_end_strain = post.grid_max_strain;
   job.analysis_source = cfg.source();
   fs::create_directories(out);
   try {

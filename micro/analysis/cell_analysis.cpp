@@ -75,7 +75,17 @@ class Analysis {
   double scale_ = 1.0;  // residual scale
   CohesiveEvaluation eval_;
   // Path bookkeeping.
-  double work_ = 0.0, last_force_ = 0.0, last_lambda_ = 0.0, peak_ = 0.0;
+  double work_ = 0.0, last_force_ = 0.0, last_lambda_ = 0.0;
+  double peak_ = 0.0;  // the largest sigma_bar so far
+  void note_peak(const CellState& s) { peak_ = std::max(peak_, s.sigma_bar_Pa); }
+  // GrowthFallback::UnloadAndRegrow: how often, whether the last grow() unloaded, and the dissipated
+  // energy at the last unload (reloading ends when a point dissipates again).
+  std::size_t unloads_ = 0;
+  bool unloaded_ = false, reloading_ = false;
+  double reload_dissipated_ = 0.0, unload_strain_ = 0.0;
+  // The first reload step is a linear one under displacement control to this lambda (halved until
+  // no point dissipates in it, so the trapezoid work of that step is exact); 0: none pending.
+  double reload_lambda_ = 0.0;
 
   int gauss() const { return o_.enrichment.crack_points; }
 
@@ -124,6 +134,14 @@ class Analysis {
     return false;
   }
 
+  // Energy dissipated per unit thickness by the cohesive points in `flat` (flat_history() order).
+  double dissipated(const std::vector<CohesiveHistory>& flat) const {
+    double sum = 0.0;
+    for (std::size_t p = 0; p < flat.size(); ++p)
+      sum += stage_.em->cohesive[p].weight * (law_.dissipated(flat[p].kappa) + flat[p].shear_dissipated);
+    return sum;
+  }
+
   double active_length() const {
     double l = 0.0;
     for (const Crack& c : cracks_) l += c.active_length();
@@ -153,8 +171,15 @@ class Analysis {
       if (c.valid) r = std::max(r, c.stress_Pa / law_.tensile_strength_Pa);
     return r;
   }
-  // Grows every tip at f_t and re-equilibrates, repeatedly. Returns "" or a failure diagnostic.
+  // Grows every tip at f_t and re-equilibrates, repeatedly. Returns "" or a failure diagnostic;
+  // sets unloaded_ when it passed a growth event by unloading (then there is no state to emit).
   std::string grow(int& iterations);
+  // GrowthFallback::UnloadAndRegrow at the converged state before growth: unloads to zero along the
+  // secants (the work is booked), then advances the crack tips `ready` in their `directions`.
+  void unload_and_advance(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t);
+  // After the linear reload step: scales the state along its secant to where the first cohesive
+  // point reaches its history opening or the first tip reaches f_t.
+  void scale_to_envelope();
   CellState state(int iterations);
 };
 
@@ -166,6 +191,16 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(g.size());
   const auto N = static_cast<Eigen::Index>(sys.dofs());
   Eigen::VectorXd r, rhs(N + 1);
+  // Backtracking: a full step that raises |r| is halved (up to line_search_halvings times). A point
+  // switching branch of the piecewise-linear law (softening/unloading, open/contact) makes Newton
+  // cycle between two or four iterates; a shorter step breaks the cycle.
+  Eigen::VectorXd d_prev, x_prev;
+  double lambda_prev = 0.0, r_prev = std::numeric_limits<double>::infinity(), alpha = 1.0;
+  int halvings = 0;
+  // |r| cannot be computed more accurately than its round-off, ~ eps | |K| |d| |: where that exceeds
+  // the tolerance (stiff activation branches and tiny cut supports on porous cells) it is the
+  // convergence bound instead (estimated with the tangent of the previous iteration).
+  double tolerance = o_.tolerance * scale_;
   for (int it = 0; it <= o_.max_iterations; ++it) {
     sys.evaluate(d_, lambda_, law_, committed, true, r, eval_);
     const double cres = hold == Hold::Lambda ? lambda_ - target : g.dot(d_) - target;
@@ -173,9 +208,18 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
       res.why = "the residual is not finite";
       return res;
     }
+    // (Not at the round-off floor: there |r| stalls by nature, and only the constraint may be unmet.)
+    if (it > 0 && r.norm() >= r_prev && r.norm() > tolerance && halvings < o_.line_search_halvings &&
+        it < o_.max_iterations) {
+      alpha *= 0.5;
+      ++halvings;
+      d_ = d_prev + alpha * x_prev.head(N);
+      lambda_ = lambda_prev + alpha * x_prev[N];
+      continue;
+    }
     const double cscale = hold == Hold::Lambda ? 1e-12 * std::max(std::abs(target), 1e-12)
                                                : 1e-10 * law_.critical_opening() * std::max(active_length(), 1e-12);
-    if (it > 0 && r.norm() <= o_.tolerance * scale_ && std::abs(cres) <= cscale) {
+    if (it > 0 && r.norm() <= tolerance && std::abs(cres) <= cscale) {
       res.ok = true;
       res.iterations = it;
       trial = eval_.trial;
@@ -183,6 +227,13 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
     }
     if (it == o_.max_iterations) break;
     const Eigen::SparseMatrix<double> J = hold == Hold::Lambda ? sys.bordered(zero, 1.0) : sys.bordered(g, 0.0);
+    {
+      Eigen::VectorXd u(N + 1);
+      u.head(N) = d_.cwiseAbs();
+      u[N] = std::abs(lambda_);
+      const double round_off = 16.0 * std::numeric_limits<double>::epsilon() * (J.cwiseAbs() * u).head(N).norm();
+      tolerance = std::max(o_.tolerance * scale_, round_off);
+    }
     // The pattern is fixed per stage and constraint: the ordering and symbolic analysis are reused.
     const long key = 2 * stage_id_ + (hold == Hold::Lambda ? 0 : 1);
     if (!lu_ || key != lu_key_) {
@@ -206,11 +257,29 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
       res.why = "UMFPACK: non-finite correction";
       return res;
     }
+    // Stagnation at round-off: the constraint holds, |r| is within a factor 10 of the tolerance and
+    // the correction would move d by less than 1e-10 of itself, so further iterations only trade
+    // rounding errors (porous cells stall like this at 1.0-1.5 x the tolerance).
+    if (it > 0 && std::abs(cres) <= cscale && r.norm() <= 10.0 * tolerance &&
+        x.head(N).norm() <= 1e-10 * d_.norm()) {
+      res.ok = true;
+      res.iterations = it;
+      trial = eval_.trial;
+      return res;
+    }
+    d_prev = d_;
+    lambda_prev = lambda_;
+    x_prev = x;
+    // |r| is the merit only once the (linear) constraint holds: the first step of a path increment
+    // starts in equilibrium off the new constraint, so its |r| must rise.
+    r_prev = std::abs(cres) <= cscale ? r.norm() : std::numeric_limits<double>::infinity();
+    alpha = 1.0;
+    halvings = 0;
     d_ += x.head(N);
     lambda_ += x[N];
   }
   res.why = fmt::format("no convergence in {} iterations (|r| = {:.3e}, tolerance {:.3e})", o_.max_iterations, r.norm(),
-                        o_.tolerance * scale_);
+                        tolerance);
   return res;
 }
 
@@ -226,6 +295,7 @@ std::vector<TipCriterion> Analysis::criteria() {
 }
 
 std::string Analysis::grow(int& iterations) {
+  unloaded_ = false;
   for (int round = 0; round < o_.max_growth_per_step; ++round) {
     const std::vector<TipCriterion> t = criteria();
     std::vector<std::size_t> ready;
@@ -233,6 +303,10 @@ std::string Analysis::grow(int& iterations) {
       if (t[c].valid && t[c].stress_Pa >= law_.tensile_strength_Pa * (1.0 - 1e-9)) ready.push_back(c);
     if (ready.empty()) return "";
     std::stable_sort(ready.begin(), ready.end(), [&](std::size_t a, std::size_t b) { return t[a].stress_Pa > t[b].stress_Pa; });
+    if (o_.growth_fallback == GrowthFallback::AlwaysUnload) {
+      unload_and_advance(ready, t);
+      return "";
+    }
     const Snapshot before = snapshot();
     std::string why;
     bool ok = false;
@@ -275,10 +349,51 @@ std::string Analysis::grow(int& iterations) {
     }
     if (!ok) {
       restore(before, true);
-      return "re-equilibration after crack growth failed: " + why;
+      if (o_.growth_fallback == GrowthFallback::Fail) return "re-equilibration after crack growth failed: " + why;
+      unload_and_advance(ready, t);
+      return "";  // at zero load no tip is at f_t
     }
   }
   return "";
+}
+
+void Analysis::scale_to_envelope() {
+  // With the history fixed every point keeps its branch (secant, or contact: the sign of w_n is
+  // kept) when d and lambda are scaled, so the scaled state is an equilibrium until some point
+  // reaches its kappa or some tip reaches f_t; all of those are linear in the scale.
+  Eigen::VectorXd r;
+  const std::vector<CohesiveHistory> h = flat_history();
+  stage_.sys->evaluate(d_, lambda_, law_, h, false, r, eval_);
+  double ratio = max_ratio(criteria());
+  for (std::size_t p = 0; p < h.size(); ++p) {
+    const double wn = std::max(eval_.opening[p][0], 0.0), wt = eval_.opening[p][1];
+    const double weff = law_.mode == CohesiveMode::ModeI ? wn : std::hypot(wn, wt);
+    ratio = std::max(ratio, weff / h[p].kappa);
+  }
+  if (!(ratio > 0.0) || ratio >= 1.0) return;
+  const double scale = (1.0 - 1e-9) / ratio;
+  d_ *= scale;
+  lambda_ *= scale;
+}
+
+void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t) {
+  // Secant unloading is linear and path independent (every point's traction is S(kappa) [[u]], or
+  // the contact penalty), so d = 0 at lambda = 0 is the exact unloaded state and the work of the
+  // unloading is -1/2 F lambda; the trapezoid to here books the step that reached this state.
+  const double F = stage_.sys->reaction(d_, lambda_);
+  unload_strain_ = lambda_ / cell_.side_m;
+  work_ += 0.5 * (last_force_ + F) * (lambda_ - last_lambda_) - 0.5 * F * lambda_;
+  last_force_ = 0.0;
+  last_lambda_ = 0.0;
+  d_.setZero();
+  lambda_ = 0.0;
+  for (const std::size_t c : ready) advance_crack(cracks_, c, t[c].direction, cell_, mesh_, o_.growth);
+  build_stage();  // the new segments start at zero opening: equilibrium holds exactly
+  ++unloads_;
+  unloaded_ = true;
+  reloading_ = true;
+  reload_dissipated_ = dissipated(flat_history());
+  reload_lambda_ = unload_strain_ * cell_.side_m;
 }
 
 CellState Analysis::state(int iterations) {
@@ -291,15 +406,14 @@ CellState Analysis::state(int iterations) {
   s.strain = lambda_ / cell_.side_m;
   s.sigma_bar_Pa = F / cell_.side_m;
   s.bulk_energy_J_m = sys.bulk_energy(d_);
-  double coh = 0.0, diss = 0.0, wmax = 0.0;
+  double coh = 0.0, wmax = 0.0;
   for (std::size_t p = 0; p < h.size(); ++p) {
     const double w = stage_.em->cohesive[p].weight;
     coh += 0.5 * w * (eval_.traction[p][0] * eval_.opening[p][0] + eval_.traction[p][1] * eval_.opening[p][1]);
-    diss += w * (law_.dissipated(h[p].kappa) + h[p].shear_dissipated);
     wmax = std::max(wmax, eval_.opening[p][0]);
   }
   s.cohesive_energy_J_m = coh;
-  s.dissipated_J_m = diss;
+  s.dissipated_J_m = dissipated(h);
   work_ += 0.5 * (last_force_ + F) * (lambda_ - last_lambda_);
   last_force_ = F;
   last_lambda_ = lambda_;
@@ -365,7 +479,7 @@ CellResponse Analysis::run(const FractureObserver& observer) {
     d_ = lambda_ * d1;
     emit(state(0));
   }
-  peak_ = out.states.back().sigma_bar_Pa;
+  note_peak(out.states.back());
   if (!(lambda_act <= lambda_max)) {
     out.status = CellStatus::StepLimit;
     out.diagnostic = "no crack reached the growth criterion below max_strain";
@@ -380,16 +494,21 @@ CellResponse Analysis::run(const FractureObserver& observer) {
     out.diagnostic = fmt::format("at e_bar = {:.4e}: {}", lambda_ / cell_.side_m, why);
     return out;
   }
-  emit(state(iterations));
-  peak_ = std::max(peak_, out.states.back().sigma_bar_Pa);
+  if (!unloaded_) {
+    emit(state(iterations));
+    note_peak(out.states.back());
+  }
 
   double dc = o_.opening_increment, de = o_.strain_increment;
   out.status = CellStatus::StepLimit;
   for (int step = 0; step < o_.max_steps; ++step) {
-    const bool opening = o_.control == PathControl::CrackOpening && active_length() > 0.0;
+    const bool reload = reload_lambda_ > 0.0;
+    const bool opening = !reload && o_.control == PathControl::CrackOpening && active_length() > 0.0;
     const Hold hold = opening ? Hold::Opening : Hold::Lambda;
     const double c0 = stage_.sys->opening_integral(d_);
-    const double target = opening ? c0 + dc * law_.critical_opening() * active_length() : lambda_ + de * cell_.side_m;
+    const double target = reload    ? reload_lambda_
+                          : opening ? c0 + dc * law_.critical_opening() * active_length()
+                                    : lambda_ + de * cell_.side_m;
     const Eigen::VectorXd d0 = d_;
     const double l0 = lambda_;
     const Snapshot pre = snapshot();
@@ -398,6 +517,11 @@ CellResponse Analysis::run(const FractureObserver& observer) {
     auto cut = [&]() {
       d_ = d0;
       lambda_ = l0;
+      if (reload) {  // below 1/64 of the unloading strain: reload by the ordinary steps instead
+        reload_lambda_ *= 0.5;
+        if (reload_lambda_ < unload_strain_ * cell_.side_m / 64.0) reload_lambda_ = 0.0;
+        return true;
+      }
       if (opening) dc *= 0.5;
       else de *= 0.5;
       return opening ? dc >= o_.min_opening_increment : de >= o_.min_strain_increment;
@@ -412,7 +536,15 @@ CellResponse Analysis::run(const FractureObserver& observer) {
     }
     // Overshoot of the growth criterion: cut, so cracks advance close to f_t.
     const std::vector<CohesiveHistory> committed = flat_history();
+    if (reload && dissipated(trial) > dissipated(committed) + 1e-9 * law_.fracture_energy_J_m2 * active_length()) {
+      cut();
+      continue;
+    }
     commit(trial);
+    if (reload) {
+      reload_lambda_ = 0.0;
+      scale_to_envelope();
+    }
     const double ratio = max_ratio(criteria());
     if (ratio > 1.0 + o_.growth_tolerance) {
       commit(committed);
@@ -429,14 +561,21 @@ CellResponse Analysis::run(const FractureObserver& observer) {
       out.diagnostic = fmt::format("at e_bar = {:.4e}: {} (smallest step)", lambda_ / cell_.side_m, why);
       break;
     }
+    if (unloaded_) continue;  // reload (reload_lambda_), then on with the step sizes in use
     emit(state(its));
     const CellState& s = out.states.back();
-    peak_ = std::max(peak_, s.sigma_bar_Pa);
+    note_peak(s);
     if (n.iterations <= o_.easy_iterations) {
       if (opening) dc = std::min(dc * o_.step_growth, o_.max_opening_increment);
       else de = std::min(de * o_.step_growth, o_.max_strain_increment);
     }
-    if (active_length() > 0.0 && s.sigma_bar_Pa < o_.separation_fraction * peak_) {
+    // Back on the envelope once some point dissipates beyond round-off.
+    if (reloading_ && s.dissipated_J_m > reload_dissipated_ + 1e-9 * law_.fracture_energy_J_m2 * active_length())
+      reloading_ = false;
+    // Separated: sigma_bar below separation_fraction x the peak; on a reload (a secant through the
+    // origin), the stress it would have at the strain it was unloaded from.
+    const double floor = o_.separation_fraction * peak_ * (reloading_ ? s.strain / unload_strain_ : 1.0);
+    if (active_length() > 0.0 && s.sigma_bar_Pa < floor) {
       out.status = CellStatus::Separated;
       break;
     }
@@ -448,6 +587,7 @@ CellResponse Analysis::run(const FractureObserver& observer) {
   if (out.status == CellStatus::StepLimit && out.diagnostic.empty()) out.diagnostic = "reached max_steps";
   out.dofs = stage_.em->dof_count();
   out.enriched_nodes = stage_.em->enriched_node.size();
+  out.growth_unloads = unloads_;
   return out;
 }
 

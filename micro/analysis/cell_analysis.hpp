@@ -7,8 +7,9 @@
 //     there are exact multiples: d = 1 - sigma_bar/(E0_bar e_bar) is 0 to round-off).
 //  2. Growth: every tip whose criterion reaches f_t advances (crack_growth.hpp); the enriched model
 //     is rebuilt and re-equilibrated, until no tip grows (or max_growth_per_step). If the new geometry
-//     does not re-equilibrate, only the most stressed tip advances; if that fails too, the whole load
-//     step is undone (geometry included) and cut.
+//     does not re-equilibrate, only the most stressed tip advances; if that fails too, the cell is
+//     unloaded to zero, the tips advance there and the path reloads (GrowthFallback, the default), or
+//     the whole load step is undone (geometry included) and cut.
 //     Known limits (unfinished): no crack nucleates away from the seeds; tips that pass another crack
 //     in parallel do not join it (GrowthOptions::coalescence_spacings, off), which can leave an uncut
 //     sliver carrying ~10 % of the peak long after it; in Mode I the sliding energy released when a
@@ -26,7 +27,9 @@
 //     Steps are cut in half when Newton fails or when a tip criterion overshoots f_t by
 //     more than growth_tolerance, and grow again after easy steps.
 //  4. Energies per accepted state (CellState), status Separated once sigma_bar falls below
-//     separation_fraction x the peak after the peak.
+//     separation_fraction x the peak after the peak; while reloading after a regrowth unload (until a
+//     cohesive point dissipates again the cell is on a secant through the origin) once that secant
+//     gives less than this at the strain the cell was unloaded from.
 #include <functional>
 
 #include "cell_geometry.hpp"
@@ -48,6 +51,17 @@ struct CellMaterial {
 };
 
 enum class PathControl { CrackOpening, Displacement };
+// [choice] What happens when a grown geometry finds no equilibrium at the load it grew at (Newton
+// cycles between the branches of the piecewise-linear cohesive law: the carried-over enrichment of
+// a moved tip ramp is a poor start). UnloadAndRegrow (default): the cell is unloaded along its
+// secants to zero (exact: every cohesive point unloads to the origin, no history changes), the tips
+// advance there, where the new segments carry no traction, and path following reloads it. Energy is
+// consistent (the unloading work is booked; growing at zero load costs nothing), and the strain-
+// controlled curve sees the reload like a snap-back excursion (energy_bridging.hpp, first passage).
+// Fail: the whole load step is undone and cut, and the cell fails at the smallest step.
+// AlwaysUnload: every growth event goes through the unloading (verification of that path: the
+// strip and one-pore tests must give the same peak, dissipation and energy balance).
+enum class GrowthFallback { UnloadAndRegrow, Fail, AlwaysUnload };
 enum class TipEnrichment { Ramped };  // [choice] crack_geometry.hpp; the only one implemented
 
 struct CellAnalysisOptions {
@@ -58,6 +72,7 @@ struct CellAnalysisOptions {
   GrowthOptions growth;
   double growth_tolerance = 0.02;  // a step whose tip criterion exceeds f_t (1 + this) is cut
   int max_growth_per_step = 400;   // tip advances per load step (re-equilibrated after each round)
+  GrowthFallback growth_fallback = GrowthFallback::UnloadAndRegrow;
   double activation_ratio = 1e-3;  // cohesive law, cohesive_law.hpp
   double contact_penalty_ratio = 1.0;
   CohesiveMode mode = CohesiveMode::ModeI;
@@ -70,6 +85,7 @@ struct CellAnalysisOptions {
   double min_strain_increment = 1e-11;
   double max_strain_increment = 2e-5;
   int max_iterations = 25;               // Newton iterations per step
+  int line_search_halvings = 4;          // halvings of a step that raises |r| (0: plain Newton)
   double tolerance = 1e-8;               // |r| <= tolerance x |f_unit| x lambda at first cracking
   int easy_iterations = 4;               // steps that converge in at most this many grow by step_growth
   double step_growth = 1.5;

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include <fmt/format.h>
+
 #include "quadrature.hpp"
 
 namespace uhpc::micro {
@@ -18,8 +20,9 @@ void opt(const Config& c, const std::string& key, int& v, const Range& r) {
 
 }  // namespace
 
-CellAnalysisOptions read_cell_analysis_options(const Config& c) {
+CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<double> curve_end_strain) {
   CellAnalysisOptions o;
+  if (curve_end_strain) o.max_strain = *curve_end_strain;
   opt(c, "rk.support_factor", o.rk.support_factor, Range::closed(1.0, 4.0));
   if (c.has("rk.kernel")) o.rk.kernel = kernel_from_name(c.choice("rk.kernel", {"cubic_bspline", "quartic_spline"}));
   opt(c, "quadrature.triangle_points", o.rk.triangle_points, Range::closed(1, 12));
@@ -43,6 +46,12 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c) {
   opt(c, "growth.coalescence_spacings", o.growth.coalescence_spacings, Range::closed(0.0, 4.0));
   opt(c, "growth.tolerance", o.growth_tolerance, Range::positive());
   opt(c, "growth.max_per_step", o.max_growth_per_step, Range::at_least(1));
+  if (c.has("growth.fallback")) {
+    const std::string f = c.choice("growth.fallback", {"unload_and_regrow", "fail", "always_unload"});
+    o.growth_fallback = f == "fail"            ? GrowthFallback::Fail
+                        : f == "always_unload" ? GrowthFallback::AlwaysUnload
+                                               : GrowthFallback::UnloadAndRegrow;
+  }
   if (c.has("path.control"))
     o.control = c.choice("path.control", {"crack_opening", "displacement"}) == "displacement"
                     ? PathControl::Displacement
@@ -58,8 +67,13 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c) {
   opt(c, "path.easy_iterations", o.easy_iterations, Range::at_least(0));
   opt(c, "path.max_steps", o.max_steps, Range::at_least(1));
   opt(c, "path.max_strain", o.max_strain, Range::positive());
+  if (curve_end_strain && o.max_strain < *curve_end_strain)
+    c.fail("path.max_strain", fmt::format("{} is below the strain grid's end {}: the curves would not cover the grid "
+                                          "(leave it out to stop at the grid's end)",
+                                          o.max_strain, *curve_end_strain));
   opt(c, "path.separation_fraction", o.separation_fraction, Range::open(0.0, 1.0));
   opt(c, "newton.max_iterations", o.max_iterations, Range::at_least(1));
+  opt(c, "newton.line_search_halvings", o.line_search_halvings, Range::closed(0, 30));
   opt(c, "newton.tolerance", o.tolerance, Range::open(0.0, 1.0));
   // Consistency between keys.
   if (o.min_opening_increment > o.opening_increment)

@@ -15,14 +15,19 @@
 //   path.control ("crack_opening" | "displacement"), path.elastic_states, path.opening_increment,
 //   path.min_opening_increment, path.max_opening_increment, path.strain_increment,
 //   path.min_strain_increment, path.max_strain_increment, path.step_growth, path.easy_iterations,
-//   path.max_steps, path.max_strain, path.separation_fraction,
-//   newton.max_iterations, newton.tolerance.
+//   path.max_steps, path.max_strain (default: curve_end_strain when given, else the solver's own; never
+//   below curve_end_strain), path.separation_fraction,  growth.fallback ("unload_and_regrow" | "fail" |
+//   "always_unload"),
+//   newton.max_iterations, newton.line_search_halvings, newton.tolerance.
+#include <optional>
+
 #include "cell_analysis.hpp"
 #include "uhpc/config.hpp"
 
 namespace uhpc::micro {
 
-CellAnalysisOptions read_cell_analysis_options(const Config& section);
+// `curve_end_strain`: the strain the path must reach (the drivers' strain-grid end), if any.
+CellAnalysisOptions read_cell_analysis_options(const Config& section, std::optional<double> curve_end_strain = {});
 
 // youngs_modulus_Pa, poissons_ratio, tensile_strength_Pa, fracture_energy_J_m2 (all required).
 CellMaterial read_cell_material(const Config& matrix);

@@ -38,6 +38,7 @@ struct CellResponse {
   CellStatus status = CellStatus::Failed;
   std::string diagnostic;            // empty unless Failed (or a note on StepLimit)
   std::size_t nodes = 0, dofs = 0, enriched_nodes = 0;
+  std::size_t growth_unloads = 0;    // growth events passed by unloading to zero (GrowthFallback)
   double wall_s = 0.0;
 };
 

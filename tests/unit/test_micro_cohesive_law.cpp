@@ -176,6 +176,33 @@ TEST(microCellAnalysisSettings, DefaultsValuesAndErrors) {
             "run.json: key 'analysis.path.max_opening_increment': must not be below path.opening_increment");
 }
 
+TEST(microCellAnalysisSettings, PathEndFollowsTheStrainGridAndNeverStopsShortOfIt) {
+  const auto with_end = [](const std::string& text, double end) {
+    const Config c = Config::from_json(nlohmann::json::parse(text), "run.json");
+    const CellAnalysisOptions o = read_cell_analysis_options(c.section("analysis"), end);
+    c.finish();
+    return o;
+  };
+  EXPECT_DOUBLE_EQ(read(R"({"analysis": {}})").max_strain, 0.01);  // the solver's own, without a grid
+  EXPECT_DOUBLE_EQ(with_end(R"({"analysis": {}})", 1.5e-3).max_strain, 1.5e-3);
+  EXPECT_DOUBLE_EQ(with_end(R"({"analysis": {"path": {"max_strain": 3e-3}}})", 1.5e-3).max_strain, 3e-3);
+  EXPECT_EQ(test::error_of<InputError>([&] { with_end(R"({"analysis": {"path": {"max_strain": 1e-3}}})", 1.5e-3); }),
+            "run.json: key 'analysis.path.max_strain': 0.001 is below the strain grid's end 0.0015: the curves "
+            "would not cover the grid (leave it out to stop at the grid's end)");
+}
+
+TEST(microCellAnalysisSettings, GrowthFallbackAndLineSearch) {
+  const CellAnalysisOptions d = read(R"({"analysis": {}})");
+  EXPECT_EQ(d.growth_fallback, GrowthFallback::UnloadAndRegrow);
+  EXPECT_EQ(d.line_search_halvings, 4);
+  const CellAnalysisOptions o = read(R"({"analysis": {"growth": {"fallback": "fail"}, "newton": {"line_search_halvings": 0}}})");
+  EXPECT_EQ(o.growth_fallback, GrowthFallback::Fail);
+  EXPECT_EQ(o.line_search_halvings, 0);
+  EXPECT_EQ(error(R"({"analysis": {"growth": {"fallback": "retry"}}})"),
+            "run.json: key 'analysis.growth.fallback': value 'retry' is not one of: unload_and_regrow, fail, "
+            "always_unload");
+}
+
 TEST(microCellAnalysisSettings, MaterialOfTable2) {
   const Config c = Config::from_json(nlohmann::json::parse(R"({"matrix": {"youngs_modulus_Pa": 4.4296e10,
       "poissons_ratio": 0.2, "tensile_strength_Pa": 22.7e6, "fracture_energy_J_m2": 35.0}})"), "micro.json");

@@ -32,7 +32,7 @@ struct AnalyzerLog {
 // The bar of length = the cell size; f_t scattered by the seed so the cells differ. "throw_on" and
 // "fail_on" name one cell [size index, realization] ([-1, -1]: none).
 CellAnalyzerFactory bar_factory(AnalyzerLog& log) {
-  return [&log](const Config& a) -> CellAnalyzer {
+  return [&log](const Config& a, double) -> CellAnalyzer {
     const double E = a.number("youngs_modulus_Pa", Range::positive());
     const double f_t = a.number("tensile_strength_Pa", Range::positive());
     const double G_f = a.number("fracture_energy_J_m2", Range::positive());
@@ -310,8 +310,8 @@ TEST_F(MicroRunCommands, ShippedConfigsAreValid) {
   // section with the fracture solver's reader); the first cell is generated and meshed, then the
   // probe stops it.
   int built = 0;
-  const CellAnalyzerFactory probe = [&built](const Config& analysis) -> CellAnalyzer {
-    (void)read_cell_analysis_options(analysis);
+  const CellAnalyzerFactory probe = [&built](const Config& analysis, double curve_end_strain) -> CellAnalyzer {
+    (void)read_cell_analysis_options(analysis, curve_end_strain);
     ++built;
     return [](const CellJob& job, const StateObserver&) -> CellResponse {
       EXPECT_TRUE(job.mesh);  // the shipped cell config meshes

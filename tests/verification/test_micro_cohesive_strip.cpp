@@ -98,7 +98,7 @@ TEST(microCohesiveStrip, RampedEnrichmentClosesAtTheTip) {
   EXPECT_GT(jump_at(0.2e-3), 0.05 * scale);         // behind the last segment: open
 }
 
-TEST(microCohesiveStrip, StraightCrackDissipatesGfAndPeaksAtFt) {
+void check_straight_strip(const CellAnalysisOptions& o) {
   const double L = 1e-3;
   CellGeometry g;
   g.side_m = L;
@@ -106,7 +106,6 @@ TEST(microCohesiveStrip, StraightCrackDissipatesGfAndPeaksAtFt) {
   g.seeds.push_back({-1, {xc, 0.0}, {xc, L}});  // a crack path from edge to edge, normal to x
   const CellDiscretization mesh = mesh_cell(g, spacing(100e-6));
   const CellMaterial m = table2();
-  const CellAnalysisOptions o;
   const CellResponse r = analyze_cell(g, mesh, m, o);
   print(r);
   ASSERT_EQ(r.status, CellStatus::Separated) << r.diagnostic;
@@ -136,6 +135,17 @@ TEST(microCohesiveStrip, StraightCrackDissipatesGfAndPeaksAtFt) {
   std::printf("worst energy balance error %.3e (relative to the external work)\n", worst);
   // Damage grows monotonically on the softening branch.
   EXPECT_TRUE(cracked);
+  if (o.growth_fallback == GrowthFallback::AlwaysUnload) EXPECT_GT(r.growth_unloads, 5u);
+}
+
+TEST(microCohesiveStrip, StraightCrackDissipatesGfAndPeaksAtFt) { check_straight_strip(CellAnalysisOptions{}); }
+
+// Every growth event through the fallback (unload to zero, grow there, reload): the same peak,
+// dissipation and energy balance, so the fallback that rescues porous cells is consistent.
+TEST(microCohesiveStrip, GrowingAtZeroLoadGivesTheSameAnswer) {
+  CellAnalysisOptions o;
+  o.growth_fallback = GrowthFallback::AlwaysUnload;
+  check_straight_strip(o);
 }
 
 // A strip longer than 2 l_ch (l_ch = E G_f / f_t^2 = 3.0 mm): the elastic energy stored at the peak
@@ -175,7 +185,8 @@ TEST(microCohesiveStrip, LongStripSnapsBackAndSeparates) {
   EXPECT_LT(worst, 0.01);
 }
 
-TEST(microCohesiveStrip, SeedsOfOnePoreGrowNormalToTheLoadAndSeparate) {
+// Returns the peak sigma_bar.
+double check_one_pore(const CellAnalysisOptions& o) {
   const double L = 1.2e-3, D = 0.3e-3;
   CellGeometry g;
   g.side_m = L;
@@ -186,21 +197,28 @@ TEST(microCohesiveStrip, SeedsOfOnePoreGrowNormalToTheLoadAndSeparate) {
   const CellDiscretization mesh = mesh_cell(g, spacing(h));
   const CellMaterial m = table2();
   std::vector<Crack> cracks;
-  const CellResponse r = analyze_cell(g, mesh, m, CellAnalysisOptions{}, {}, &cracks);
+  const CellResponse r = analyze_cell(g, mesh, m, o, {}, &cracks);
   print(r);
-  ASSERT_EQ(r.status, CellStatus::Separated) << r.diagnostic;
+  EXPECT_EQ(r.status, CellStatus::Separated) << r.diagnostic;
+  if (r.status != CellStatus::Separated) return 0.0;
   double peak = 0.0;
   for (const CellState& s : r.states) peak = std::max(peak, s.sigma_bar_Pa);
-  double worst = 0.0;
-  for (const CellState& s : r.states)
-    if (s.external_work_J_m > 0.0)
-      worst = std::max(worst, std::abs(s.external_work_J_m - s.bulk_energy_J_m - s.cohesive_energy_J_m -
-                                       s.dissipated_J_m) / s.external_work_J_m);
-  std::printf("peak sigma_bar %.3f MPa, E0_bar %.0f MPa, worst energy balance %.2e, dissipated %.5f J/m\n",
-              peak * 1e-6, r.E0_bar_Pa * 1e-6, worst, r.states.back().dissipated_J_m);
+  // Energy balance relative to the largest external work so far (an unload gives work back, so the
+  // current work is no scale there), worst over the path and at the end.
+  double worst = 0.0, work_max = 0.0, final_error = 0.0;
+  for (const CellState& s : r.states) {
+    work_max = std::max(work_max, s.external_work_J_m);
+    if (work_max <= 0.0) continue;
+    final_error = std::abs(s.external_work_J_m - s.bulk_energy_J_m - s.cohesive_energy_J_m - s.dissipated_J_m) / work_max;
+    worst = std::max(worst, final_error);
+  }
+  std::printf("peak sigma_bar %.3f MPa, E0_bar %.0f MPa, energy balance worst %.2e, final %.2e, dissipated %.5f J/m, "
+              "growth events passed by unloading %zu\n",
+              peak * 1e-6, r.E0_bar_Pa * 1e-6, worst, final_error, r.states.back().dissipated_J_m, r.growth_unloads);
   // The pore concentrates the stress: the first crack starts below f_t x E0_bar/E'.
   EXPECT_LT(peak, m.tensile_strength_Pa);
-  ASSERT_EQ(cracks.size(), 2u);
+  EXPECT_EQ(cracks.size(), 2u);
+  if (cracks.size() != 2u) return 0.0;
   for (const Crack& c : cracks) {
     std::printf("crack from seed %d: %zu active segments, tip (%.1f, %.1f) um, end %d\n", c.seed, c.active,
                 c.tip().x * 1e6, c.tip().y * 1e6, static_cast<int>(c.tip_end));
@@ -211,7 +229,26 @@ TEST(microCohesiveStrip, SeedsOfOnePoreGrowNormalToTheLoadAndSeparate) {
   }
   // Two straight cracks across the ligaments: G_f x (L - D) dissipated, and the energies balance.
   EXPECT_NEAR(r.states.back().dissipated_J_m / (m.fracture_energy_J_m2 * (L - D)), 1.0, 0.02);
-  EXPECT_LT(worst, 0.01);
+  EXPECT_LT(final_error, 0.01);
+  if (o.growth_fallback != GrowthFallback::AlwaysUnload) {
+    EXPECT_LT(worst, 0.01);
+  } else {
+    // Measured 1.3e-2 (plain path 5.6e-3): each unload books -1/2 F lambda, which misses the
+    // Nitsche boundary energy (1.4e-3 of the stored energy, see the first states), and the steps
+    // after a reload add their trapezoid error; a known cost of the fallback, bounded here.
+    EXPECT_LT(worst, 0.02);
+    EXPECT_GT(r.growth_unloads, 5u);
+  }
+  return peak;
+}
+
+TEST(microCohesiveStrip, SeedsOfOnePoreGrowNormalToTheLoadAndSeparate) { check_one_pore(CellAnalysisOptions{}); }
+
+TEST(microCohesiveStrip, SeedsOfOnePoreGrowingAtZeroLoadGiveTheSameAnswer) {
+  CellAnalysisOptions o;
+  o.growth_fallback = GrowthFallback::AlwaysUnload;
+  const double peak = check_one_pore(o);
+  EXPECT_NEAR(peak / check_one_pore(CellAnalysisOptions{}), 1.0, 0.01);
 }
 
 // A paper cell (Burr pores at 3.4 %, two seeds per pore, 50 um spacing) to separation: a measurement,
