@@ -142,6 +142,9 @@ class Analysis {
     return sum;
   }
 
+  // Dissipation below this is round-off (a point at its kappa to the last digit), not loading.
+  double dissipation_round_off() const { return 1e-9 * law_.fracture_energy_J_m2 * active_length(); }
+
   double active_length() const {
     double l = 0.0;
     for (const Crack& c : cracks_) l += c.active_length();
@@ -205,7 +208,7 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
       res.why = "the residual is not finite";
       return res;
     }
-    // (Not at the round-off floor: there |r| stalls by nature, and only the constraint may be unmet.)
+    // (Not once |r| meets the tolerance: then only the constraint may be unmet.)
     if (it > 0 && r.norm() >= r_prev && r.norm() > tolerance && halvings < o_.line_search_halvings &&
         it < o_.max_iterations) {
       alpha *= 0.5;
@@ -516,7 +519,7 @@ CellResponse Analysis::run(const FractureObserver& observer) {
     }
     // Overshoot of the growth criterion: cut, so cracks advance close to f_t.
     const std::vector<CohesiveHistory> committed = flat_history();
-    if (reload && dissipated(trial) > dissipated(committed) + 1e-9 * law_.fracture_energy_J_m2 * active_length()) {
+    if (reload && dissipated(trial) > dissipated(committed) + dissipation_round_off()) {
       cut();
       continue;
     }
@@ -550,7 +553,7 @@ CellResponse Analysis::run(const FractureObserver& observer) {
       else de = std::min(de * o_.step_growth, o_.max_strain_increment);
     }
     // Back on the envelope once some point dissipates beyond round-off.
-    if (reloading_ && s.dissipated_J_m > reload_dissipated_ + 1e-9 * law_.fracture_energy_J_m2 * active_length())
+    if (reloading_ && s.dissipated_J_m > reload_dissipated_ + dissipation_round_off())
       reloading_ = false;
     // Separated: sigma_bar below separation_fraction x the peak; on a reload (a secant through the
     // origin), the stress it would have at the strain it was unloaded from.
