@@ -197,6 +197,7 @@ nlohmann::json cell_summary_json(const CellJob& job, const CellResult& r, const 
   j["dofs"] = resp.dofs;
   j["enriched_nodes"] = resp.enriched_nodes;
   j["growth_unloads"] = resp.growth_unloads;
+  j["operator_energy_mismatch"] = resp.operator_energy_mismatch;
   j["wall_s"] = resp.wall_s;
   j["post_options"] = post_options_json(o);
   j["cell_hash"] = cell_hash(job);
@@ -272,6 +273,7 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
     r.dofs = j.at("dofs").get<std::size_t>();
     r.enriched_nodes = j.at("enriched_nodes").get<std::size_t>();
     r.growth_unloads = j.value("growth_unloads", std::size_t{0});  // absent in results made before the fallback existed
+    r.operator_energy_mismatch = j.value("operator_energy_mismatch", 0.0);  // absent before it existed
     r.wall_s = j.at("wall_s").get<double>();
     const std::lock_guard<std::mutex> lock(hdf5_mutex());
     const H5Reader h5(dir / "curves.h5");

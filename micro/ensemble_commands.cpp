@@ -39,6 +39,7 @@ struct AnalysisEnsembleSettings {
   std::size_t realizations = 0;
   std::uint64_t base_seed = 0;
   bool retry_failed = true;
+  double max_operator_mismatch = 0.05;  // cells above it are suspect: excluded from the mean, listed
   PostOptions post;
 };
 
@@ -63,6 +64,7 @@ AnalysisEnsembleSettings read_settings(const Config& cfg) {
   e.realizations = static_cast<std::size_t>(cfg.integer("realizations", Range::closed(1, 10000)));
   e.base_seed = static_cast<std::uint64_t>(cfg.integer("base_seed", Range::closed(0, 9007199254740991.0)));
   e.retry_failed = cfg.flag("retry_failed");
+  e.max_operator_mismatch = cfg.number("max_operator_mismatch", Range::positive());
   e.post = read_post_options(cfg);
   return e;
 }
@@ -192,15 +194,16 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   // Per-size statistics.
   std::vector<SizeCurves> curves;
   nlohmann::json sizes = nlohmann::json::array();
-  std::size_t ok_total = 0, failed_total = 0, incomplete_total = 0, reloaded_total = 0;
-  std::printf("%8s %6s %6s %10s %8s %18s %22s %20s\n", "size_mm", "cells", "failed", "incomplete", "averaged",
-              "nominal_MPa", "peak_MPa mean +- std", "e(d=0.5) mean");
+  std::size_t ok_total = 0, failed_total = 0, incomplete_total = 0, suspect_total = 0, reloaded_total = 0;
+  std::printf("%8s %6s %6s %10s %8s %8s %18s %22s %20s\n", "size_mm", "cells", "failed", "incomplete", "suspect",
+              "averaged", "nominal_MPa", "peak_MPa mean +- std", "e(d=0.5) mean");
   for (std::size_t i = 0; i < e.sizes_m.size(); ++i) {
     std::vector<const ResampledCurve*> used;
     std::vector<double> peaks, e50, E0, dissipated;
     double bridging_max = 0.0;
-    std::size_t failed = 0, incomplete = 0, reloaded = 0;
-    nlohmann::json failures = nlohmann::json::array(), seeds = nlohmann::json::array();
+    std::size_t failed = 0, incomplete = 0, suspect = 0, reloaded = 0;
+    nlohmann::json failures = nlohmann::json::array(), suspects = nlohmann::json::array(),
+                   seeds = nlohmann::json::array();
     for (std::size_t r = 0; r < e.realizations; ++r) {
       const CellOutcome& o = outcomes[i * e.realizations + r];
       const CellResult& res = o.result;
@@ -212,6 +215,17 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
                             {"seed", o.job.seed},
                             {"directory", fs::relative(o.job.out_dir, out).string()},
                             {"diagnostic", res.response.diagnostic}});
+        continue;
+      }
+      // A discrete operator whose energy parts from the stored energy has a spurious soft mode
+      // (CellResponse::operator_energy_mismatch): such a path is not evidence, whatever its status.
+      if (res.response.operator_energy_mismatch > e.max_operator_mismatch) {
+        ++suspect;
+        suspects.push_back({{"realization", r},
+                            {"seed", o.job.seed},
+                            {"directory", fs::relative(o.job.out_dir, out).string()},
+                            {"status", to_string(res.response.status)},
+                            {"operator_energy_mismatch", res.response.operator_energy_mismatch}});
         continue;
       }
       if (!averaged(res)) {
@@ -230,6 +244,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
     ok_total += e.realizations - failed;
     failed_total += failed;
     incomplete_total += incomplete;
+    suspect_total += suspect;
     reloaded_total += reloaded;
     sizes.push_back({{"cell_size_m", e.sizes_m[i]},
                      {"directory", size_label(e.sizes_m[i])},
@@ -237,6 +252,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
                      {"cells_ok", e.realizations - failed},
                      {"cells_failed", failed},
                      {"cells_incomplete", incomplete},
+                     {"cells_suspect", suspect},
                      {"cells_averaged", used.size()},
                      {"cells_reloaded", reloaded},
                      {"nominal_strength_Pa", used.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.nominal_strength_Pa)},
@@ -247,10 +263,11 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
                      {"dissipated_energy_density_J_m3", spread_json(dissipated)},
                      {"bridging_max_abs_difference", bridging_max},
                      {"seeds", seeds},
-                     {"failures", failures}});
+                     {"failures", failures},
+                     {"suspects", suspects}});
     const Spread sp = spread(peaks), se = spread(e50);
-    std::printf("%8.2f %6zu %6zu %10zu %8zu %18.3f %12.3f +- %7.3f %20.4g\n", e.sizes_m[i] * 1e3, e.realizations,
-                failed, incomplete, used.size(), c.nominal_strength_Pa * 1e-6, sp.mean * 1e-6, sp.std * 1e-6,
+    std::printf("%8.2f %6zu %6zu %10zu %8zu %8zu %18.3f %12.3f +- %7.3f %20.4g\n", e.sizes_m[i] * 1e3, e.realizations,
+                failed, incomplete, suspect, used.size(), c.nominal_strength_Pa * 1e-6, sp.mean * 1e-6, sp.std * 1e-6,
                 se.count ? se.mean : std::numeric_limits<double>::quiet_NaN());
   }
 
@@ -269,9 +286,11 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
       {"cells_ok", ok_total},
       {"cells_failed", failed_total},
       {"cells_incomplete", incomplete_total},
+      {"cells_suspect", suspect_total},
       {"cells_reloaded", reloaded_total},
-      {"averaging_rule", "cells not failed whose curve covers the whole strain grid; failed and incomplete cells are "
-                         "excluded and listed"},
+      {"averaging_rule", "cells not failed, not suspect (operator_energy_mismatch above max_operator_mismatch) and "
+                         "whose curve covers the whole strain grid; the others are excluded and listed"},
+      {"max_operator_mismatch", e.max_operator_mismatch},
       {"ensemble_file", ensemble.size_count() > 0 ? nlohmann::json("ensemble.h5") : nlohmann::json(nullptr)},
       {"sizes_without_cells_m", skipped},
       {"post_options", post_options_json(e.post)},
@@ -279,8 +298,8 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
       {"wall_s", wall},
       {"provenance", provenance.to_json()}};
   write_text_atomic(out / "summary.json", summary.dump(2) + "\n");
-  std::printf("%zu cells (%zu reloaded), %zu failed, %zu incomplete, in %.1f s\n", total, reloaded_total, failed_total,
-              incomplete_total, wall);
+  std::printf("%zu cells (%zu reloaded), %zu failed, %zu incomplete, %zu suspect, in %.1f s\n", total, reloaded_total,
+              failed_total, incomplete_total, suspect_total, wall);
   if (failed_total > 0) spdlog::warn("{} cells failed: see {}", failed_total, (out / "summary.json").string());
   if (!skipped.empty())
     throw NumericalError(fmt::format("{} of {} sizes have no cell to average ({}); see {}", skipped.size(),

@@ -68,6 +68,7 @@ int run_cell_command(const std::string& config_path, const std::vector<std::stri
                 f.dissipated_per_area_J_m3, r.path.max_abs_difference,
                 r.path.max_abs_difference > post.bridging_tolerance ? " (above the tolerance)" : "");
   }
+  std::printf("operator energy vs stored energy: %.2e of the largest work\n", resp.operator_energy_mismatch);
   spdlog::info("wrote {} and {} in {:.2f} s", (out / "curves.h5").string(), (out / "summary.json").string(),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   if (resp.status == CellStatus::Failed)

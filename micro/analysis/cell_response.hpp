@@ -39,6 +39,10 @@ struct CellResponse {
   std::string diagnostic;            // empty unless Failed (or a note on StepLimit)
   std::size_t nodes = 0, dofs = 0, enriched_nodes = 0;
   std::size_t growth_unloads = 0;    // growth events passed by unloading to zero (GrowthFallback)
+  // Largest |operator energy - (bulk + boundary energy)| over the states, relative to the largest
+  // external work so far (FractureSystem::operator_energy): 1e-2 on the elastic branch (VCI's
+  // asymmetry); far above that, the cracked operator has a spurious soft mode and the path is suspect.
+  double operator_energy_mismatch = 0.0;
   double wall_s = 0.0;
 };
 

@@ -136,6 +136,7 @@ FractureSystem::FractureSystem(const RkGalerkinModel& base, const EnrichedModel&
         T[e - b0][k] = tr[0];
         T[e - b0][2 + k] = tr[1];
       }
+    for (int r = 0; r < 2; ++r) k_lambda_ += w * beta * P[r] * g[static_cast<std::size_t>(r)] * g[static_cast<std::size_t>(r)];
     for (std::int64_t ei = b0; ei < b1; ++ei) {
       const std::int32_t i = bt.support.indices[ei];
       const double* Ti = T[ei - b0].data();
@@ -273,14 +274,38 @@ Eigen::SparseMatrix<double> FractureSystem::bordered(const Eigen::VectorXd& row,
 double FractureSystem::opening_integral(const Eigen::VectorXd& d) const { return opening_gradient().dot(d); }
 
 Eigen::VectorXd FractureSystem::opening_gradient() const {
+  return opening_gradient(std::vector<char>(em_.cohesive.size(), 1));
+}
+
+Eigen::VectorXd FractureSystem::opening_gradient(const std::vector<char>& selected) const {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs()));
-  for (const CohesivePoint& q : em_.cohesive)
+  for (std::size_t p = 0; p < em_.cohesive.size(); ++p) {
+    if (!selected[p]) continue;
+    const CohesivePoint& q = em_.cohesive[p];
     for (std::int64_t e = q.begin; e < q.end; ++e) {
       const std::int32_t k = em_.jump_node[e];
       g[2 * k] += q.weight * em_.jump_coefficient[e] * q.normal[0];
       g[2 * k + 1] += q.weight * em_.jump_coefficient[e] * q.normal[1];
     }
+  }
   return g;
+}
+
+void FractureSystem::boundary_point(std::size_t p, const BoundarySegment& seg, const Eigen::VectorXd& d,
+                                    std::array<double, 2>& u, std::array<double, 2>& t) const {
+  const GeneralTable& bt = em_.boundary;
+  u = {0.0, 0.0};
+  std::array<double, 3> eps{0.0, 0.0, 0.0};
+  for (std::int64_t e = bt.support.begin(p); e < bt.support.end(p); ++e) {
+    const std::int32_t i = bt.support.indices[e];
+    const double ux = d[2 * i], uy = d[2 * i + 1], gx = bt.grad[2 * e], gy = bt.grad[2 * e + 1];
+    u[0] += bt.psi[e] * ux;
+    u[1] += bt.psi[e] * uy;
+    eps[0] += gx * ux;
+    eps[1] += gy * uy;
+    eps[2] += gy * ux + gx * uy;
+  }
+  t = traction(apply_D(D_, eps), seg.normal.data());
 }
 
 double FractureSystem::reaction(const Eigen::VectorXd& d, double lambda) const {
@@ -291,23 +316,55 @@ double FractureSystem::reaction(const Eigen::VectorXd& d, double lambda) const {
     const std::size_t s = static_cast<std::size_t>(base_.boundary.segment[p]);
     const BoundarySegment& seg = base_.segments[s];
     if (seg.part != far_) continue;
-    double u[2] = {0.0, 0.0};
-    std::array<double, 3> eps{0.0, 0.0, 0.0};
-    for (std::int64_t e = bt.support.begin(p); e < bt.support.end(p); ++e) {
-      const std::int32_t i = bt.support.indices[e];
-      const double ux = d[2 * i], uy = d[2 * i + 1], gx = bt.grad[2 * e], gy = bt.grad[2 * e + 1];
-      u[0] += bt.psi[e] * ux;
-      u[1] += bt.psi[e] * uy;
-      eps[0] += gx * ux;
-      eps[1] += gy * uy;
-      eps[2] += gy * ux + gx * uy;
-    }
-    const std::array<double, 2> t = traction(apply_D(D_, eps), seg.normal.data());
+    std::array<double, 2> u, t;
+    boundary_point(p, seg, d, u, t);
     const std::array<double, 2> g = bc.displacement(&base_.boundary.x[2 * p]);
     const double beta = nitsche_beta(base_, problem_, s);
-    force += base_.boundary.weight[p] * (t[axis_] - beta * (u[axis_] - lambda * g[axis_]));
+    const auto a = static_cast<std::size_t>(axis_);
+    force += base_.boundary.weight[p] * (t[a] - beta * (u[a] - lambda * g[a]));
   }
   return force;
+}
+
+double FractureSystem::operator_energy(const Eigen::VectorXd& d, double lambda) const {
+  // 1/2 [d; lambda]^T H [d; lambda] with H the linear operator of the residual, r = K_lin d - lambda f_unit,
+  // and its far-face entry k_lambda (the Nitsche penalty of a unit displacement): the energy whose
+  // change the external work measures, since F = -f_unit . d + lambda k_lambda (reaction()).
+  const auto N = static_cast<Eigen::Index>(dofs());
+  const Eigen::Map<const Eigen::SparseMatrix<double>> K(N, N, static_cast<Eigen::Index>(lin_.size()), col_start_.data(),
+                                                        rows_.data(), lin_.data());
+  return 0.5 * d.dot(K * d) - lambda * f_unit_.dot(d) + 0.5 * lambda * lambda * k_lambda_;
+}
+
+double FractureSystem::boundary_energy(const Eigen::VectorXd& d, double lambda) const {
+  // The energy whose derivatives are the Nitsche and point-penalty rows of K_lin and f_unit:
+  // sum w (-t . P (u - lambda g) + beta/2 |P (u - lambda g)|^2) + penalty/2 u_c^2.
+  const GeneralTable& bt = em_.boundary;
+  double energy = 0.0;
+  for (std::size_t p = 0; p < bt.size(); ++p) {
+    const std::size_t s = static_cast<std::size_t>(base_.boundary.segment[p]);
+    const BoundarySegment& seg = base_.segments[s];
+    const BoundaryCondition& bc = problem_.boundary[static_cast<int>(seg.part)];
+    if (!bc.prescribed[0] && !bc.prescribed[1]) continue;
+    std::array<double, 2> u, t;
+    boundary_point(p, seg, d, u, t);
+    const std::array<double, 2> g = bc.displacement(&base_.boundary.x[2 * p]);
+    const double beta = nitsche_beta(base_, problem_, s);
+    for (int r = 0; r < 2; ++r) {
+      if (!bc.prescribed[static_cast<std::size_t>(r)]) continue;
+      const double gap = u[static_cast<std::size_t>(r)] - lambda * g[static_cast<std::size_t>(r)];
+      energy += base_.boundary.weight[p] * (-t[static_cast<std::size_t>(r)] * gap + 0.5 * beta * gap * gap);
+    }
+  }
+  const double penalty = problem_.nitsche_factor * problem_.material.plane_modulus_Pa();
+  const GeneralTable& ct = em_.constraints;
+  for (std::size_t p = 0; p < problem_.points.size(); ++p) {
+    const int c = problem_.points[p].component;
+    double u = 0.0;
+    for (std::int64_t e = ct.support.begin(p); e < ct.support.end(p); ++e) u += ct.psi[e] * d[2 * ct.support.indices[e] + c];
+    energy += 0.5 * penalty * u * u;
+  }
+  return energy;
 }
 
 double FractureSystem::bulk_energy(const Eigen::VectorXd& d) const {

@@ -51,9 +51,17 @@ class FractureSystem {
   // c(d) = sum over active cohesive points of w n . [[u]] (the crack-opening control), and its gradient.
   double opening_integral(const Eigen::VectorXd& d) const;
   Eigen::VectorXd opening_gradient() const;
+  // The same sum over the cohesive points with selected[p] != 0 only (the process-zone control).
+  Eigen::VectorXd opening_gradient(const std::vector<char>& selected) const;
 
   double reaction(const Eigen::VectorXd& d, double lambda) const;  // far-face force per unit thickness
   double bulk_energy(const Eigen::VectorXd& d) const;              // 1/2 int eps : D : eps
+  // The Nitsche terms' and the point penalties' share of the stored energy (may be negative).
+  double boundary_energy(const Eigen::VectorXd& d, double lambda) const;
+  // The quadratic form of the linear operator, 1/2 d.K_lin d - lambda f_unit.d + 1/2 lambda^2 k: with
+  // a symmetric positive K_lin it equals bulk + boundary energy. VCI makes K_lin non-symmetric; where
+  // its symmetric part loses definiteness the two part ways (a consistency check of the discretization).
+  double operator_energy(const Eigen::VectorXd& d, double lambda) const;
 
  private:
   const RkGalerkinModel& base_;
@@ -68,8 +76,12 @@ class FractureSystem {
   std::vector<int> col_start_, rows_;
   std::vector<double> lin_, values_;
   Eigen::VectorXd f_unit_;
+  double k_lambda_ = 0.0;  // d reaction / d lambda at fixed d (the far face's Nitsche penalty)
 
   void add_block(std::vector<double>& v, std::int32_t i, std::int32_t j, const double b[2][2]) const;
+  // Displacement and traction at boundary point p (of segment seg).
+  void boundary_point(std::size_t p, const BoundarySegment& seg, const Eigen::VectorXd& d, std::array<double, 2>& u,
+                      std::array<double, 2>& t) const;
 };
 
 }  // namespace uhpc::micro

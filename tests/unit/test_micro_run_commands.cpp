@@ -29,8 +29,9 @@ struct AnalyzerLog {
   std::atomic<int> states{0};  // observer calls
 };
 
-// The bar of length = the cell size; f_t scattered by the seed so the cells differ. "throw_on" and
-// "fail_on" name one cell [size index, realization] ([-1, -1]: none).
+// The bar of length = the cell size; f_t scattered by the seed so the cells differ. "throw_on",
+// "fail_on" and "suspect_on" (an operator energy mismatch of 0.5) name one cell [size index,
+// realization] ([-1, -1]: none).
 CellAnalyzerFactory bar_factory(AnalyzerLog& log) {
   return [&log](const Config& a, double) -> CellAnalyzer {
     const double E = a.number("youngs_modulus_Pa", Range::positive());
@@ -39,6 +40,7 @@ CellAnalyzerFactory bar_factory(AnalyzerLog& log) {
     const double scatter = a.number("strength_scatter", Range::closed(0.0, 0.5));
     const std::vector<double> throw_on = a.numbers("throw_on", Range::any(), 2);
     const std::vector<double> fail_on = a.numbers("fail_on", Range::any(), 2);
+    const std::vector<double> suspect_on = a.numbers("suspect_on", Range::any(), 2);
     return [=, &log](const CellJob& job, const StateObserver& observe) {
       ++log.calls;
       if (job.mesh) ++log.meshed;
@@ -58,6 +60,7 @@ CellAnalyzerFactory bar_factory(AnalyzerLog& log) {
         observe(i, r.states[i]);
         ++log.states;
       }
+      if (is(suspect_on)) r.operator_energy_mismatch = 0.5;
       if (is(fail_on)) {
         r.states.resize(15);
         r.status = CellStatus::Failed;
@@ -70,7 +73,8 @@ CellAnalyzerFactory bar_factory(AnalyzerLog& log) {
 
 const nlohmann::json kAnalysis = {{"youngs_modulus_Pa", 4.4296e10}, {"tensile_strength_Pa", 2.27e7},
                                   {"fracture_energy_J_m2", 35.0},   {"strength_scatter", 0.1},
-                                  {"throw_on", {-1, -1}},           {"fail_on", {-1, -1}}};
+                                  {"throw_on", {-1, -1}},           {"fail_on", {-1, -1}},
+                                  {"suspect_on", {-1, -1}}};
 const nlohmann::json kPost = {{"bridging", {{"strain_control", "first_passage"}, {"damage_measure", "energy"}, {"tolerance", 0.01}}},
                               {"strain_grid", {{"max_strain", 1.5e-3}, {"points", 301}}}};
 
@@ -94,7 +98,8 @@ class MicroRunCommands : public test::ScratchDirTest {
     return write_config("ensemble.json", {{"cell_sizes_m", sizes},
                                           {"realizations", realizations},
                                           {"base_seed", 7},
-                                          {"retry_failed", true}});
+                                          {"retry_failed", true},
+                                          {"max_operator_mismatch", 0.05}});
   }
   int run(const fs::path& config, const std::vector<std::string>& sets, const fs::path& out) {
     return run_main("uhpc-micro run", [&] { return run_cell_command(config.string(), sets, out, bar_factory(log_)); });
@@ -192,6 +197,32 @@ TEST_F(MicroRunCommands, BadConfigExitsTwoWithOneLineNamingFileAndKey) {
   }
   EXPECT_EQ(log_.calls, 0);
   EXPECT_FALSE(fs::exists(dir_ / "bad" / "summary.json"));
+}
+
+// A cell whose discrete operator parts from its stored energy is left out of the mean and listed;
+// a looser bound takes it back.
+TEST_F(MicroRunCommands, EnsembleLeavesSuspectCellsOutOfTheMean) {
+  const fs::path config = ensemble_config({0.003}, 2);
+  const std::vector<std::string> sets = {"cell.discretization.mesh=false", "analysis.suspect_on=[0,1]"};
+  testing::internal::CaptureStderr();
+  ASSERT_EQ(ensemble(config, sets, dir_ / "ens"), kExitOk);
+  testing::internal::GetCapturedStderr();
+  const nlohmann::json s = read_json(dir_ / "ens" / "summary.json");
+  EXPECT_EQ(s["cells_suspect"], 1);
+  EXPECT_EQ(s["cells_failed"], 0);
+  const nlohmann::json& s0 = s["sizes"][0];
+  EXPECT_EQ(s0["cells_averaged"], 1);
+  ASSERT_EQ(s0["suspects"].size(), 1u);
+  EXPECT_EQ(s0["suspects"][0]["realization"], 1);
+  EXPECT_EQ(s0["suspects"][0]["status"], "separated");
+  EXPECT_DOUBLE_EQ(s0["suspects"][0]["operator_energy_mismatch"].get<double>(), 0.5);
+
+  std::vector<std::string> loose = sets;
+  loose.push_back("max_operator_mismatch=1");
+  testing::internal::CaptureStderr();
+  ASSERT_EQ(ensemble(config, loose, dir_ / "ens"), kExitOk);
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(read_json(dir_ / "ens" / "summary.json")["sizes"][0]["cells_averaged"], 2);
 }
 
 TEST_F(MicroRunCommands, EnsembleRecordsFailuresResumesAndFeedsTheCalibrateReader) {
