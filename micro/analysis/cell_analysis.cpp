@@ -22,7 +22,9 @@ struct Stage {
   std::unique_ptr<FractureSystem> sys;
 };
 
-enum class Hold { Lambda, Opening };
+// What a path step holds: the far-face displacement, the crack-opening integral over all cohesive
+// points, or the opening integral over the process zone only (zone_ below).
+enum class Hold { Lambda, Opening, Zone };
 
 struct NewtonResult {
   bool ok = false;
@@ -76,6 +78,24 @@ class Analysis {
   CohesiveEvaluation eval_;
   // Path bookkeeping.
   double work_ = 0.0, last_force_ = 0.0, last_lambda_ = 0.0;
+  double max_work_ = 0.0, operator_mismatch_ = 0.0;  // CellResponse::operator_energy_mismatch
+  // stored + dissipated - work at the last accepted state (or after an unload): a step may not raise
+  // it by more than CellAnalysisOptions::energy_tolerance x the largest work.
+  double imbalance_ = 0.0;
+  struct Books {
+    double work, last_force, last_lambda, max_work, operator_mismatch;
+  };
+  Books books() const { return {work_, last_force_, last_lambda_, max_work_, operator_mismatch_}; }
+  void restore_books(const Books& b) {
+    work_ = b.work;
+    last_force_ = b.last_force;
+    last_lambda_ = b.last_lambda;
+    max_work_ = b.max_work;
+    operator_mismatch_ = b.operator_mismatch;
+  }
+  static double imbalance(const CellState& s) {
+    return s.bulk_energy_J_m + s.cohesive_energy_J_m + s.dissipated_J_m - s.external_work_J_m;
+  }
   double peak_ = 0.0;  // the largest sigma_bar so far
   void note_peak(const CellState& s) { peak_ = std::max(peak_, s.sigma_bar_Pa); }
   // GrowthFallback::UnloadAndRegrow: how often, whether the last grow() unloaded, and the dissipated
@@ -86,6 +106,13 @@ class Analysis {
   // The first reload step is a linear one under displacement control to this lambda (halved until
   // no point dissipates in it, so the trapezoid work of that step is exact); 0: none pending.
   double reload_lambda_ = 0.0;
+  // Process-zone control (CellAnalysisOptions::zone_control): the cohesive points on their softening
+  // envelope (flat_history() order), their length, and a counter that keys the LU's pattern.
+  std::vector<char> zone_;
+  double zone_length_ = 0.0;
+  long zone_id_ = 0;
+  // Selects the zone at the current state; false when no point is on its softening envelope.
+  bool select_zone();
 
   int gauss() const { return o_.enrichment.crack_points; }
 
@@ -190,7 +217,7 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
   NewtonResult res;
   const std::vector<CohesiveHistory> committed = flat_history();
   FractureSystem& sys = *stage_.sys;
-  const Eigen::VectorXd g = sys.opening_gradient();
+  const Eigen::VectorXd g = hold == Hold::Zone ? sys.opening_gradient(zone_) : sys.opening_gradient();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(g.size());
   const auto N = static_cast<Eigen::Index>(sys.dofs());
   Eigen::VectorXd r, rhs(N + 1);
@@ -218,6 +245,7 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
       continue;
     }
     const double cscale = hold == Hold::Lambda ? 1e-12 * std::max(std::abs(target), 1e-12)
+                          : hold == Hold::Zone ? 1e-10 * law_.critical_opening() * zone_length_
                                                : 1e-10 * law_.critical_opening() * std::max(active_length(), 1e-12);
     if (it > 0 && r.norm() <= tolerance && std::abs(cres) <= cscale) {
       res.ok = true;
@@ -228,7 +256,8 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
     if (it == o_.max_iterations) break;
     const Eigen::SparseMatrix<double> J = hold == Hold::Lambda ? sys.bordered(zero, 1.0) : sys.bordered(g, 0.0);
     // The pattern is fixed per stage and constraint: the ordering and symbolic analysis are reused.
-    const long key = 2 * stage_id_ + (hold == Hold::Lambda ? 0 : 1);
+    // (A zone's row has its own pattern: a new analysis per zone.)
+    const long key = hold == Hold::Zone ? -2 - zone_id_ : 2 * stage_id_ + (hold == Hold::Lambda ? 0 : 1);
     if (!lu_ || key != lu_key_) {
       lu_ = std::make_unique<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>>();
       // No iterative refinement: Newton's own iterations correct the residual; refinement would
@@ -370,6 +399,7 @@ void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const s
   last_lambda_ = 0.0;
   d_.setZero();
   lambda_ = 0.0;
+  imbalance_ = dissipated(flat_history()) - work_;  // nothing stored at zero load
   for (const std::size_t c : ready) advance_crack(cracks_, c, t[c].direction, cell_, mesh_, o_.growth);
   build_stage();  // the new segments start at zero opening: equilibrium holds exactly
   ++unloads_;
@@ -377,6 +407,26 @@ void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const s
   reloading_ = true;
   reload_dissipated_ = dissipated(flat_history());
   reload_lambda_ = unload_strain_ * cell_.side_m;
+}
+
+bool Analysis::select_zone() {
+  // On the envelope: the effective opening at the point's history maximum, short of w_c (beyond it
+  // the point is traction-free and opens freely; holding it would hold nothing).
+  Eigen::VectorXd r;
+  const std::vector<CohesiveHistory> h = flat_history();
+  stage_.sys->evaluate(d_, lambda_, law_, h, false, r, eval_);
+  zone_.assign(h.size(), 0);
+  zone_length_ = 0.0;
+  for (std::size_t p = 0; p < h.size(); ++p) {
+    const double wn = std::max(eval_.opening[p][0], 0.0), wt = eval_.opening[p][1];
+    const double weff = law_.mode == CohesiveMode::ModeI ? wn : std::hypot(wn, wt);
+    if (weff >= (1.0 - 1e-6) * h[p].kappa && h[p].kappa < law_.critical_opening()) {
+      zone_[p] = 1;
+      zone_length_ += stage_.em->cohesive[p].weight;
+    }
+  }
+  ++zone_id_;
+  return zone_length_ > 0.0;
 }
 
 CellState Analysis::state(int iterations) {
@@ -389,6 +439,7 @@ CellState Analysis::state(int iterations) {
   s.strain = lambda_ / cell_.side_m;
   s.sigma_bar_Pa = F / cell_.side_m;
   s.bulk_energy_J_m = sys.bulk_energy(d_);
+  const double stored = s.bulk_energy_J_m + sys.boundary_energy(d_, lambda_);
   double coh = 0.0, wmax = 0.0;
   for (std::size_t p = 0; p < h.size(); ++p) {
     const double w = stage_.em->cohesive[p].weight;
@@ -401,6 +452,9 @@ CellState Analysis::state(int iterations) {
   last_force_ = F;
   last_lambda_ = lambda_;
   s.external_work_J_m = work_;
+  max_work_ = std::max(max_work_, work_);
+  if (max_work_ > 0.0)
+    operator_mismatch_ = std::max(operator_mismatch_, std::abs(sys.operator_energy(d_, lambda_) - stored) / max_work_);
   s.max_opening_m = wmax;
   for (std::size_t c = 0; c < cracks_.size(); ++c) {
     s.crack_segments += cracks_[c].active;
@@ -462,6 +516,7 @@ CellResponse Analysis::run(const FractureObserver& observer) {
     d_ = lambda_ * d1;
     emit(state(0));
   }
+  imbalance_ = imbalance(out.states.back());
   note_peak(out.states.back());
   if (!(lambda_act <= lambda_max)) {
     out.status = CellStatus::StepLimit;
@@ -480,16 +535,22 @@ CellResponse Analysis::run(const FractureObserver& observer) {
   if (!unloaded_) {
     emit(state(iterations));
     note_peak(out.states.back());
+    imbalance_ = imbalance(out.states.back());
   }
 
-  double dc = o_.opening_increment, de = o_.strain_increment;
+  double dc = o_.opening_increment, de = o_.strain_increment, dz = o_.opening_increment;
+  const bool always_zone = o_.zone_control == ZoneControl::Always;
+  bool zone_mode = always_zone;  // stepping on the process-zone opening (after a fold of the global one)
+  std::string opening_failure;
   out.status = CellStatus::StepLimit;
   for (int step = 0; step < o_.max_steps; ++step) {
     const bool reload = reload_lambda_ > 0.0;
     const bool opening = !reload && o_.control == PathControl::CrackOpening && active_length() > 0.0;
-    const Hold hold = opening ? Hold::Opening : Hold::Lambda;
+    const bool zone = opening && zone_mode && select_zone();
+    const Hold hold = zone ? Hold::Zone : opening ? Hold::Opening : Hold::Lambda;
     const double c0 = stage_.sys->opening_integral(d_);
     const double target = reload    ? reload_lambda_
+                          : zone    ? stage_.sys->opening_gradient(zone_).dot(d_) + dz * law_.critical_opening() * zone_length_
                           : opening ? c0 + dc * law_.critical_opening() * active_length()
                                     : lambda_ + de * cell_.side_m;
     const Eigen::VectorXd d0 = d_;
@@ -505,17 +566,35 @@ CellResponse Analysis::run(const FractureObserver& observer) {
         if (reload_lambda_ < unload_strain_ * cell_.side_m / 64.0) reload_lambda_ = 0.0;
         return true;
       }
-      if (opening) dc *= 0.5;
+      if (zone) dz *= 0.5;
+      else if (opening) dc *= 0.5;
       else de *= 0.5;
-      return opening ? dc >= o_.min_opening_increment : de >= o_.min_strain_increment;
+      return zone ? dz >= o_.min_opening_increment : opening ? dc >= o_.min_opening_increment : de >= o_.min_strain_increment;
     };
     if (!n.ok) {
-      if (!cut()) {
-        out.status = CellStatus::Failed;
-        out.diagnostic = fmt::format("at e_bar = {:.4e}, step {}: {} (smallest step)", l0 / cell_.side_m, step, n.why);
-        break;
+      if (cut()) continue;
+      // The global opening integral may pass a maximum (points elsewhere close faster than the
+      // process zone opens): the process zone's own opening still grows, so step on it instead.
+      if (opening && !zone && o_.zone_control == ZoneControl::Fallback && select_zone()) {
+        zone_mode = true;
+        dz = o_.opening_increment;
+        dc = o_.opening_increment;
+        opening_failure = n.why;
+        continue;
       }
-      continue;
+      out.status = CellStatus::Failed;
+      out.diagnostic = fmt::format("at e_bar = {:.4e}, step {}: {} (smallest step{})", l0 / cell_.side_m, step, n.why,
+                                   zone ? "; the crack-opening step before: " + opening_failure : "");
+      break;
+    }
+    // The tension path stays at lambda >= 0 and F >= 0 (a snap-back tends to the origin); past it
+    // lies a spurious branch where contact closes the cell around a still-opening process zone.
+    if (!reload && (lambda_ < 0.0 || stage_.sys->reaction(d_, lambda_) < 0.0)) {
+      if (cut()) continue;
+      out.status = CellStatus::Failed;
+      out.diagnostic = fmt::format("at e_bar = {:.4e}, step {}: the smallest step crosses into compression",
+                                   l0 / cell_.side_m, step);
+      break;
     }
     // Overshoot of the growth criterion: cut, so cracks advance close to f_t.
     const std::vector<CohesiveHistory> committed = flat_history();
@@ -545,13 +624,31 @@ CellResponse Analysis::run(const FractureObserver& observer) {
       break;
     }
     if (unloaded_) continue;  // reload (reload_lambda_), then on with the step sizes in use
-    emit(state(its));
+    // Energy admissibility: an equilibrium at the end of a step can still be out of reach from its
+    // start (a fragment whose cracks opened past w_c at zero load, dissipating what no work paid for).
+    const Books before = books();
+    CellState next = state(its);
+    const double created = imbalance(next) - imbalance_;
+    if (created > o_.energy_tolerance * std::max(max_work_, 1e-300)) {
+      restore_books(before);
+      restore(pre, true);
+      if (cut()) continue;
+      out.status = CellStatus::Failed;
+      out.diagnostic = fmt::format("at e_bar = {:.4e}, step {}: the smallest step creates energy ({:.3g} of the largest "
+                                   "work)", l0 / cell_.side_m, step, created / max_work_);
+      break;
+    }
+    imbalance_ = imbalance(next);
+    emit(next);
     const CellState& s = out.states.back();
     note_peak(s);
     if (n.iterations <= o_.easy_iterations) {
-      if (opening) dc = std::min(dc * o_.step_growth, o_.max_opening_increment);
+      if (zone) dz = std::min(dz * o_.step_growth, o_.max_opening_increment);
+      else if (opening) dc = std::min(dc * o_.step_growth, o_.max_opening_increment);
       else de = std::min(de * o_.step_growth, o_.max_strain_increment);
     }
+    // Back to the global opening once it grows again.
+    if (zone && !always_zone && stage_.sys->opening_integral(d_) > c0) zone_mode = false;
     // Back on the envelope once some point dissipates beyond round-off.
     if (reloading_ && s.dissipated_J_m > reload_dissipated_ + dissipation_round_off())
       reloading_ = false;
@@ -571,6 +668,7 @@ CellResponse Analysis::run(const FractureObserver& observer) {
   out.dofs = stage_.em->dof_count();
   out.enriched_nodes = stage_.em->enriched_node.size();
   out.growth_unloads = unloads_;
+  out.operator_energy_mismatch = operator_mismatch_;
   return out;
 }
 

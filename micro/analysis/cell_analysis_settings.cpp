@@ -56,6 +56,11 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
     o.control = c.choice("path.control", {"crack_opening", "displacement"}) == "displacement"
                     ? PathControl::Displacement
                     : PathControl::CrackOpening;
+  if (c.has("path.zone_control")) {
+    const std::string z = c.choice("path.zone_control", {"fallback", "off", "always"});
+    o.zone_control = z == "off" ? ZoneControl::Off : z == "always" ? ZoneControl::Always : ZoneControl::Fallback;
+  }
+  opt(c, "path.energy_tolerance", o.energy_tolerance, Range::positive());
   opt(c, "path.elastic_states", o.elastic_states, Range::at_least(1));
   opt(c, "path.opening_increment", o.opening_increment, Range::positive());
   opt(c, "path.min_opening_increment", o.min_opening_increment, Range::positive());

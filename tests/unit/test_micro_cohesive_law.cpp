@@ -203,6 +203,18 @@ TEST(microCellAnalysisSettings, GrowthFallbackAndLineSearch) {
             "always_unload");
 }
 
+TEST(microCellAnalysisSettings, ProcessZoneControlAndEnergyTolerance) {
+  EXPECT_EQ(read(R"({"analysis": {}})").zone_control, ZoneControl::Fallback);
+  EXPECT_DOUBLE_EQ(read(R"({"analysis": {}})").energy_tolerance, 0.01);
+  EXPECT_DOUBLE_EQ(read(R"({"analysis": {"path": {"energy_tolerance": 0.05}}})").energy_tolerance, 0.05);
+  EXPECT_EQ(error(R"({"analysis": {"path": {"energy_tolerance": 0}}})"),
+            "run.json: key 'analysis.path.energy_tolerance': value 0 is out of range, must be > 0");
+  EXPECT_EQ(read(R"({"analysis": {"path": {"zone_control": "off"}}})").zone_control, ZoneControl::Off);
+  EXPECT_EQ(read(R"({"analysis": {"path": {"zone_control": "always"}}})").zone_control, ZoneControl::Always);
+  EXPECT_EQ(error(R"({"analysis": {"path": {"zone_control": true}}})"),
+            "run.json: key 'analysis.path.zone_control': expected a string, got a boolean");
+}
+
 TEST(microCellAnalysisSettings, MaterialOfTable2) {
   const Config c = Config::from_json(nlohmann::json::parse(R"({"matrix": {"youngs_modulus_Pa": 4.4296e10,
       "poissons_ratio": 0.2, "tensile_strength_Pa": 22.7e6, "fracture_energy_J_m2": 35.0}})"), "micro.json");

@@ -132,10 +132,22 @@ void check_straight_strip(const CellAnalysisOptions& o) {
     worst = std::max(worst, std::abs(s.external_work_J_m - stored) / s.external_work_J_m);
     EXPECT_NEAR(stored / s.external_work_J_m, 1.0, 0.01) << "state " << k << " e_bar " << s.strain;
   }
-  std::printf("worst energy balance error %.3e (relative to the external work)\n", worst);
+  std::printf("worst energy balance error %.3e (relative to the external work), operator energy mismatch %.2e\n",
+              worst, r.operator_energy_mismatch);
+  EXPECT_LT(r.operator_energy_mismatch, 0.01);
   // Damage grows monotonically on the softening branch.
   EXPECT_TRUE(cracked);
-  if (o.growth_fallback == GrowthFallback::AlwaysUnload) EXPECT_GT(r.growth_unloads, 5u);
+  if (o.growth_fallback == GrowthFallback::AlwaysUnload) {
+    EXPECT_GT(r.growth_unloads, 5u);
+  }
+}
+
+// Every step on the process zone's opening (ZoneControl::Always; the default uses it only where the
+// global opening integral folds): the same peak, dissipation and energy balance.
+TEST(microCohesiveStrip, ProcessZoneControlGivesTheSameAnswer) {
+  CellAnalysisOptions o;
+  o.zone_control = ZoneControl::Always;
+  check_straight_strip(o);
 }
 
 TEST(microCohesiveStrip, StraightCrackDissipatesGfAndPeaksAtFt) { check_straight_strip(CellAnalysisOptions{}); }
@@ -152,7 +164,7 @@ TEST(microCohesiveStrip, GrowingAtZeroLoadGivesTheSameAnswer) {
 // exceeds G_f x crack length, so the equilibrium path snaps back (the far-face displacement must
 // decrease after the peak). The crack-opening control follows it to separation with the same
 // dissipation and energy balance as the short strip.
-TEST(microCohesiveStrip, LongStripSnapsBackAndSeparates) {
+void check_long_strip(const CellAnalysisOptions& o) {
   const double L = 8e-3;
   CellGeometry g;
   g.side_m = L;
@@ -160,7 +172,7 @@ TEST(microCohesiveStrip, LongStripSnapsBackAndSeparates) {
   g.seeds.push_back({-1, {xc, 0.0}, {xc, L}});
   const CellDiscretization mesh = mesh_cell(g, spacing(400e-6));
   const CellMaterial m = table2();
-  const CellResponse r = analyze_cell(g, mesh, m, CellAnalysisOptions{});
+  const CellResponse r = analyze_cell(g, mesh, m, o);
   print(r);
   ASSERT_EQ(r.status, CellStatus::Separated) << r.diagnostic;
   double peak = 0.0, e_peak = 0.0, e_min_after = 1.0, worst = 0.0;
@@ -183,6 +195,14 @@ TEST(microCohesiveStrip, LongStripSnapsBackAndSeparates) {
   EXPECT_LT(e_min_after, 0.8 * e_peak);  // snap-back: the imposed strain falls after the peak
   EXPECT_NEAR(last.dissipated_J_m / (m.fracture_energy_J_m2 * L), 1.0, 0.02);
   EXPECT_LT(worst, 0.01);
+}
+
+TEST(microCohesiveStrip, LongStripSnapsBackAndSeparates) { check_long_strip(CellAnalysisOptions{}); }
+
+TEST(microCohesiveStrip, LongStripOnTheProcessZoneOpeningSnapsBackAlike) {
+  CellAnalysisOptions o;
+  o.zone_control = ZoneControl::Always;
+  check_long_strip(o);
 }
 
 // Returns the peak sigma_bar.
@@ -213,8 +233,11 @@ double check_one_pore(const CellAnalysisOptions& o) {
     worst = std::max(worst, final_error);
   }
   std::printf("peak sigma_bar %.3f MPa, E0_bar %.0f MPa, energy balance worst %.2e, final %.2e, dissipated %.5f J/m, "
-              "growth events passed by unloading %zu\n",
-              peak * 1e-6, r.E0_bar_Pa * 1e-6, worst, final_error, r.states.back().dissipated_J_m, r.growth_unloads);
+              "growth events passed by unloading %zu, operator energy mismatch %.2e\n",
+              peak * 1e-6, r.E0_bar_Pa * 1e-6, worst, final_error, r.states.back().dissipated_J_m, r.growth_unloads,
+              r.operator_energy_mismatch);
+  // The discrete operator stays consistent with the stored energy (a spurious soft mode would part them).
+  EXPECT_LT(r.operator_energy_mismatch, 0.01);
   // The pore concentrates the stress: the first crack starts below f_t x E0_bar/E'.
   EXPECT_LT(peak, m.tensile_strength_Pa);
   EXPECT_EQ(cracks.size(), 2u);
@@ -233,9 +256,10 @@ double check_one_pore(const CellAnalysisOptions& o) {
   if (o.growth_fallback != GrowthFallback::AlwaysUnload) {
     EXPECT_LT(worst, 0.01);
   } else {
-    // Measured 1.3e-2 (plain path 5.6e-3): each unload books -1/2 F lambda, which misses the
-    // Nitsche boundary energy (1.4e-3 of the stored energy, see the first states), and the steps
-    // after a reload add their trapezoid error; a known cost of the fallback, bounded here.
+    // Measured 1.3e-2 (plain path 5.6e-3): each unload books -1/2 F lambda, the operator's energy,
+    // which exceeds the bulk energy reported by up to 0.7 % (VCI's asymmetry; the Nitsche terms hold
+    // only 1e-6 of it), and the steps after a reload add their trapezoid error; a known cost of the
+    // fallback, bounded here.
     EXPECT_LT(worst, 0.02);
     EXPECT_GT(r.growth_unloads, 5u);
   }
