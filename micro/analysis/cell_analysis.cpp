@@ -96,6 +96,14 @@ class Analysis {
   static double imbalance(const CellState& s) {
     return s.bulk_energy_J_m + s.cohesive_energy_J_m + s.dissipated_J_m - s.external_work_J_m;
   }
+  // The energy the path since the last accepted state created at the current state, beyond the
+  // tolerance (0 when admissible); the bookkeeping is left as it was.
+  double excess_energy() {
+    const Books b = books();
+    const double created = imbalance(state(0)) - imbalance_;
+    restore_books(b);
+    return created > o_.energy_tolerance * std::max(max_work_, 1e-300) ? created : 0.0;
+  }
   double peak_ = 0.0;  // the largest sigma_bar so far
   void note_peak(const CellState& s) { peak_ = std::max(peak_, s.sigma_bar_Pa); }
   // GrowthFallback::UnloadAndRegrow: how often, whether the last grow() unloaded, and the dissipated
@@ -315,7 +323,14 @@ std::string Analysis::grow(int& iterations) {
       if (t[c].valid && t[c].stress_Pa >= law_.tensile_strength_Pa * (1.0 - 1e-9)) ready.push_back(c);
     if (ready.empty()) return "";
     std::stable_sort(ready.begin(), ready.end(), [&](std::size_t a, std::size_t b) { return t[a].stress_Pa > t[b].stress_Pa; });
+    // An unload books the state as it is: growth rounds before it that created energy (a re-equilibration
+    // into an unreachable equilibrium) would pass unseen, so they fail the load step instead.
+    const auto unreachable = [&](double created) {
+      return fmt::format("re-equilibration after crack growth creates energy ({:.3g} of the largest work)",
+                         created / max_work_);
+    };
     if (o_.growth_fallback == GrowthFallback::AlwaysUnload) {
+      if (const double created = excess_energy(); created > 0.0) return unreachable(created);
       unload_and_advance(ready, t);
       return "";
     }
@@ -362,6 +377,7 @@ std::string Analysis::grow(int& iterations) {
     if (!ok) {
       restore(before, true);
       if (o_.growth_fallback == GrowthFallback::Fail) return "re-equilibration after crack growth failed: " + why;
+      if (const double created = excess_energy(); created > 0.0) return unreachable(created);
       unload_and_advance(ready, t);
       return "";  // at zero load no tip is at f_t
     }
