@@ -101,7 +101,9 @@ struct CellAnalysisOptions {
   ZoneControl zone_control = ZoneControl::Fallback;
   // A step whose stored + dissipated energy exceeds the work done on it by more than this x the largest
   // work so far is cut (an equilibrium out of reach from the step's start; see cell_analysis.cpp).
-  double energy_tolerance = 0.01;
+  // Measured: such jumps create 2.2 x the work (5.0 mm #0), 7 % (3.0 mm #1); ordinary growth steps on
+  // porous cells up to 1.6 % (the tip-ramp energy of the known tail bookkeeping defect).
+  double energy_tolerance = 0.05;
   int max_iterations = 25;               // Newton iterations per step
   int line_search_halvings = 4;          // halvings of a step that raises |r| (0: plain Newton)
   double tolerance = 1e-8;               // |r| <= tolerance x |f_unit| x lambda at first cracking

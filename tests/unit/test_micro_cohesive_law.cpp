@@ -205,7 +205,7 @@ TEST(microCellAnalysisSettings, GrowthFallbackAndLineSearch) {
 
 TEST(microCellAnalysisSettings, ProcessZoneControlAndEnergyTolerance) {
   EXPECT_EQ(read(R"({"analysis": {}})").zone_control, ZoneControl::Fallback);
-  EXPECT_DOUBLE_EQ(read(R"({"analysis": {}})").energy_tolerance, 0.01);
+  EXPECT_DOUBLE_EQ(read(R"({"analysis": {}})").energy_tolerance, 0.05);
   EXPECT_DOUBLE_EQ(read(R"({"analysis": {"path": {"energy_tolerance": 0.05}}})").energy_tolerance, 0.05);
   EXPECT_EQ(error(R"({"analysis": {"path": {"energy_tolerance": 0}}})"),
             "run.json: key 'analysis.path.energy_tolerance': value 0 is out of range, must be > 0");
