@@ -96,13 +96,17 @@ class Analysis {
   static double imbalance(const CellState& s) {
     return s.bulk_energy_J_m + s.cohesive_energy_J_m + s.dissipated_J_m - s.external_work_J_m;
   }
-  // The energy the path since the last accepted state created at the current state, beyond the
-  // tolerance (0 when admissible); the bookkeeping is left as it was.
+  // The energy created since the last accepted state, if beyond the tolerance (else 0).
+  double excess_energy(const CellState& s) const {
+    const double created = imbalance(s) - imbalance_;
+    return created > o_.energy_tolerance * std::max(max_work_, 1e-300) ? created : 0.0;
+  }
+  // The same at the current state, leaving the bookkeeping as it was.
   double excess_energy() {
     const Books b = books();
-    const double created = imbalance(state(0)) - imbalance_;
+    const double created = excess_energy(state(0));
     restore_books(b);
-    return created > o_.energy_tolerance * std::max(max_work_, 1e-300) ? created : 0.0;
+    return created;
   }
   double peak_ = 0.0;  // the largest sigma_bar so far
   void note_peak(const CellState& s) { peak_ = std::max(peak_, s.sigma_bar_Pa); }
@@ -644,8 +648,7 @@ CellResponse Analysis::run(const FractureObserver& observer) {
     // start (a fragment whose cracks opened past w_c at zero load, dissipating what no work paid for).
     const Books before = books();
     CellState next = state(its);
-    const double created = imbalance(next) - imbalance_;
-    if (created > o_.energy_tolerance * std::max(max_work_, 1e-300)) {
+    if (const double created = excess_energy(next); created > 0.0) {
       restore_books(before);
       restore(pre, true);
       if (cut()) continue;
