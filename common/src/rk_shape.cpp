@@ -157,6 +157,102 @@ void shepard(const Options& options, const double* x, const double* nodes, const
   for (int k = 0; k < n; ++k) psi[k] /= m00;
 }
 
+// Derivatives of the monomials with respect to y_d (the basis of fill_basis).
+template <int Dim, Basis B>
+inline void fill_basis_derivative(const double* y, int d, double* dH) {
+  constexpr int NB = basis_size(Dim, B);
+  for (int m = 0; m < NB; ++m) dH[m] = 0.0;
+  if constexpr (B == Basis::Constant) return;
+  dH[1 + d] = 1.0;
+  if constexpr (B == Basis::Quadratic) {
+    int m = 1 + Dim;
+    for (int i = 0; i < Dim; ++i)
+      for (int j = i; j < Dim; ++j, ++m) dH[m] = (i == d ? y[j] : 0.0) + (j == d ? y[i] : 0.0);
+  }
+}
+
+// Direct derivatives (Derivatives::Direct) of Psi_I = H_I^T b w_I, M b = H(0), H_I = H((x - x_I)/h):
+//   d_d Psi_I = (d_d b)^T H_I w_I + b^T (d_d H_I) w_I + b^T H_I d_d w_I,   M d_d b = -(d_d M) b,
+//   d_d M = sum_J d_d w_J H_J H_J^T + w_J (d_d H_J H_J^T + H_J d_d H_J^T).
+// Overwrites grad (nothing is written when M cannot be factorized: false); psi from solve_basis is
+// left as it is.
+template <int Dim, Basis B>
+bool direct_gradients(const Options& options, const double* x, const double* nodes, const double* support_radius,
+                      const std::int32_t* nbr, int n, double h, double* grad) {
+  constexpr int NB = basis_size(Dim, B);
+  using Mat = Eigen::Matrix<double, NB, NB>;
+  using Vec = Eigen::Matrix<double, NB, 1>;
+  const double inv_h = 1.0 / h;
+  // One neighbour's basis, its y-derivatives (scaled to x-derivatives by 1/h) and kernel gradient.
+  struct Local {
+    Vec H;
+    Vec dH[Dim];
+    double w = 0.0, dw[Dim] = {};
+  };
+  auto local_at = [&](int k) {
+    Local l;
+    const double* xi = nodes + static_cast<std::size_t>(nbr[k]) * Dim;
+    const double a = support_radius[nbr[k]];
+    double y[Dim], r2 = 0.0;
+    for (int d = 0; d < Dim; ++d) {
+      y[d] = (x[d] - xi[d]) * inv_h;
+      r2 += (x[d] - xi[d]) * (x[d] - xi[d]);
+    }
+    fill_basis<Dim, B>(y, l.H.data());
+    for (int d = 0; d < Dim; ++d) {
+      fill_basis_derivative<Dim, B>(y, d, l.dH[d].data());
+      l.dH[d] *= inv_h;
+    }
+    const double r = std::sqrt(r2);
+    const KernelValue kv = kernel_value(options.kernel, r / a);
+    l.w = kv.w;
+    for (int d = 0; d < Dim; ++d) l.dw[d] = r > 0.0 ? kv.dw_dz * (x[d] - xi[d]) / (r * a) : 0.0;  // w'(0) = 0
+    return l;
+  };
+  Mat M = Mat::Zero();
+  Mat dM[Dim];
+  for (int d = 0; d < Dim; ++d) dM[d].setZero();
+  for (int k = 0; k < n; ++k) {
+    const Local l = local_at(k);
+    if (l.w == 0.0) continue;  // outside the support (w and its derivative vanish at the edge)
+    M.noalias() += l.w * l.H * l.H.transpose();
+    for (int d = 0; d < Dim; ++d) {
+      const Mat outer = l.dH[d] * l.H.transpose();
+      dM[d].noalias() += l.dw[d] * l.H * l.H.transpose() + l.w * (outer + outer.transpose());
+    }
+  }
+  const Eigen::LDLT<Mat> ldlt(M);
+  if (ldlt.info() != Eigen::Success) return false;
+  const Vec b = ldlt.solve(Vec::Unit(0));
+  Vec db[Dim];
+  bool finite = b.allFinite();
+  for (int d = 0; d < Dim; ++d) {
+    db[d] = ldlt.solve(-(dM[d] * b));
+    finite = finite && db[d].allFinite();
+  }
+  if (!finite) return false;
+  for (int k = 0; k < n; ++k) {
+    const Local l = local_at(k);
+    for (int d = 0; d < Dim; ++d)
+      grad[k * Dim + d] = (db[d].dot(l.H) + b.dot(l.dH[d])) * l.w + b.dot(l.H) * l.dw[d];
+  }
+  return true;
+}
+
+template <int Dim>
+bool direct(const Options& options, Basis basis, const double* x, const double* nodes, const double* support_radius,
+            const std::int32_t* nbr, int n, double h, double* grad) {
+  switch (basis) {
+    case Basis::Linear:
+      return direct_gradients<Dim, Basis::Linear>(options, x, nodes, support_radius, nbr, n, h, grad);
+    case Basis::Quadratic:
+      return direct_gradients<Dim, Basis::Quadratic>(options, x, nodes, support_radius, nbr, n, h, grad);
+    case Basis::Constant:
+      break;
+  }
+  return false;
+}
+
 template <int Dim>
 bool solve(const Options& options, Basis basis, bool regularize, const double* x, const double* nodes,
            const std::int32_t* nbr, int n, double h, double m00, double* psi, double* grad, PointResult& result) {
@@ -198,6 +294,10 @@ PointResult evaluate(const Options& options, const double* x, const double* node
   while (basis != Basis::Constant) {
     if (solve<Dim>(options, basis, false, x, nodes, nbr, n, h, m00, psi, grad, result)) {
       result.path = basis == options.basis ? Path::Full : Path::Fallback;
+      // grad keeps the implicit gradients if M fails to factorize (not expected where S passed its
+      // condition test).
+      if (options.gradients && options.derivatives == Derivatives::Direct)
+        direct<Dim>(options, basis, x, nodes, support_radius, nbr, n, h, grad);
       return result;
     }
     if (options.ill_conditioning == IllConditioning::QuasiLinear &&
@@ -256,6 +356,14 @@ std::string basis_name(Basis basis) {
   }
   return "unknown";
 }
+
+Derivatives derivatives_from_name(const std::string& name) {
+  if (name == "implicit") return Derivatives::Implicit;
+  if (name == "direct") return Derivatives::Direct;
+  throw std::invalid_argument("unknown derivatives '" + name + "', expected one of: implicit, direct");
+}
+
+std::string derivatives_name(Derivatives d) { return d == Derivatives::Direct ? "direct" : "implicit"; }
 
 Basis basis_from_name(const std::string& name) {
   if (name == "constant") return Basis::Constant;

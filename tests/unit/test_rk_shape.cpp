@@ -3,10 +3,12 @@
 // the quasi-linear / fallback paths on degenerate neighbourhoods.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "uhpc/rk_shape.hpp"
@@ -86,13 +88,14 @@ double monomial_derivative(const double* x, const std::array<int, 3>& p, int dim
 }
 
 template <int Dim>
-void expect_reproduction(rk::Basis basis, std::uint32_t seed) {
+void expect_reproduction(rk::Basis basis, std::uint32_t seed, rk::Derivatives derivatives = rk::Derivatives::Implicit) {
   const bool quadratic = basis == rk::Basis::Quadratic;
   const Cloud<Dim> c = irregular_cloud<Dim>(Dim == 2 ? 21 : 9, seed, quadratic ? 2.5 : 1.5, quadratic ? 3.0 : 2.0);
   const std::vector<double> q = evaluation_points<Dim>(seed + 1, 200);
   const std::size_t nq = q.size() / Dim;
   rk::Options opt;
   opt.basis = basis;
+  opt.derivatives = derivatives;
   const rk::ShapeTable t = rk::build_shape_table<Dim>(opt, q.data(), nq, c.x.data(), c.a.data(), c.size());
   ASSERT_EQ(t.count(rk::Path::Full), nq) << "every point of a regular-enough cloud takes the full path";
 
@@ -113,8 +116,9 @@ void expect_reproduction(rk::Basis basis, std::uint32_t seed) {
         worst_grad = std::max(worst_grad, std::abs(grad[i] - monomial_derivative(xp, m, Dim, i)));
     }
   }
-  std::printf("  %dD %s basis, %zu points: worst reproduction error %.2e, worst gradient error x spacing %.2e\n",
-              Dim, rk::basis_name(basis).c_str(), nq, worst, worst_grad * c.s);
+  std::printf("  %dD %s basis, %s gradients, %zu points: worst reproduction error %.2e, worst gradient error x "
+              "spacing %.2e\n",
+              Dim, rk::basis_name(basis).c_str(), rk::derivatives_name(derivatives).c_str(), nq, worst, worst_grad * c.s);
   EXPECT_LT(worst, kTol) << "worst reproduction error";
   // Gradients carry a factor 1/h (h ~ 2 spacings): compare on the scale of the function's variation.
   EXPECT_LT(worst_grad * c.s, kTol) << "worst gradient reproduction error " << worst_grad;
@@ -124,6 +128,60 @@ TEST(RKShape, Linear2DReproducesLinearFieldsAndGradients) { expect_reproduction<
 TEST(RKShape, Linear3DReproducesLinearFieldsAndGradients) { expect_reproduction<3>(rk::Basis::Linear, 2); }
 TEST(RKShape, Quadratic2DReproducesQuadraticFieldsAndGradients) { expect_reproduction<2>(rk::Basis::Quadratic, 3); }
 TEST(RKShape, Quadratic3DReproducesQuadraticFieldsAndGradients) { expect_reproduction<3>(rk::Basis::Quadratic, 4); }
+
+TEST(RKShape, DirectDerivatives2DReproduceLinearAndQuadraticGradients) {
+  expect_reproduction<2>(rk::Basis::Linear, 11, rk::Derivatives::Direct);
+  expect_reproduction<2>(rk::Basis::Quadratic, 12, rk::Derivatives::Direct);
+}
+TEST(RKShape, DirectDerivatives3DReproduceLinearGradients) {
+  expect_reproduction<3>(rk::Basis::Linear, 13, rk::Derivatives::Direct);
+}
+
+// The direct derivatives are those of Psi_I itself: central differences of psi (step 1e-6 spacing,
+// error O(step^2) plus round-off over step) agree to 1e-6 of the gradients' scale 1/spacing; the
+// implicit gradients differ from them by O(1) of that scale on an irregular cloud.
+TEST(RKShape, DirectDerivativesAreTheDerivativesOfTheShapeFunctions) {
+  const Cloud<2> c = irregular_cloud<2>(11, 7);
+  std::vector<std::int32_t> all(c.size());
+  for (std::size_t i = 0; i < c.size(); ++i) all[i] = static_cast<std::int32_t>(i);
+  const int n = static_cast<int>(all.size());
+  rk::Options direct;
+  direct.derivatives = rk::Derivatives::Direct;
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double worst = 0.0, implicit_gap = 0.0;
+  for (int sample = 0; sample < 50; ++sample) {
+    const double x[2] = {u(rng), u(rng)};
+    std::vector<double> psi(n), grad(2 * n), implicit_grad(2 * n), plus(n), minus(n), unused(2 * n);
+    ASSERT_EQ(rk::evaluate<2>(direct, x, c.x.data(), c.a.data(), all.data(), n, psi.data(), grad.data()).path,
+              rk::Path::Full);
+    rk::evaluate<2>(rk::Options{}, x, c.x.data(), c.a.data(), all.data(), n, psi.data(), implicit_grad.data());
+    const double step = 1e-6 * c.s;
+    for (int d = 0; d < 2; ++d) {
+      double xp[2] = {x[0], x[1]}, xm[2] = {x[0], x[1]};
+      xp[d] += step;
+      xm[d] -= step;
+      rk::evaluate<2>(direct, xp, c.x.data(), c.a.data(), all.data(), n, plus.data(), unused.data());
+      rk::evaluate<2>(direct, xm, c.x.data(), c.a.data(), all.data(), n, minus.data(), unused.data());
+      for (int k = 0; k < n; ++k) {
+        const double fd = (plus[k] - minus[k]) / (2.0 * step);
+        worst = std::max(worst, std::abs(grad[2 * k + d] - fd) * c.s);
+        implicit_gap = std::max(implicit_gap, std::abs(implicit_grad[2 * k + d] - fd) * c.s);
+      }
+    }
+  }
+  std::printf("  direct - central difference: %.2e, implicit - central difference: %.2e (x spacing)\n", worst,
+              implicit_gap);
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_GT(implicit_gap, 1e-3) << "the check must be able to tell the two kinds of gradient apart";
+}
+
+TEST(RKShape, DerivativesNames) {
+  EXPECT_EQ(rk::derivatives_from_name("direct"), rk::Derivatives::Direct);
+  EXPECT_EQ(rk::derivatives_from_name("implicit"), rk::Derivatives::Implicit);
+  EXPECT_EQ(rk::derivatives_name(rk::Derivatives::Direct), "direct");
+  EXPECT_THROW(rk::derivatives_from_name("exact"), std::invalid_argument);
+}
 
 TEST(RKShape, ShapeFunctionsAreZeroOutsideTheirSupport) {
   const Cloud<2> c = irregular_cloud<2>(11, 5);

@@ -35,6 +35,13 @@ namespace uhpc::rk {
 
 enum class Basis : std::uint8_t { Constant = 0, Linear = 1, Quadratic = 2 };
 enum class IllConditioning : std::uint8_t { QuasiLinear, OrderFallback };
+// Implicit: the synchronized gradients above (one solve, no kernel derivative). Direct: the exact
+// derivatives of Psi_I, d/dx_i [H^T(y_I) b(x) phi_a(x - x_I)] with d b = -M^-1 (dM) b, which obey the
+// divergence theorem (integral of grad Psi_I over a domain = boundary integral of Psi_I n) up to
+// quadrature error only. Direct applies where M is well conditioned (Path::Full, any basis); the
+// quasi-linear path keeps implicit gradients (the lifted moments have no derivative of their own) and
+// Shepard functions always use direct ones.
+enum class Derivatives : std::uint8_t { Implicit, Direct };
 
 struct Options {
   KernelType kernel = KernelType::CubicBSpline;
@@ -49,6 +56,7 @@ struct Options {
   // shape functions extrapolate across a line (plane) of nodes.
   double ql_regularization = 1e-2;
   bool gradients = true;
+  Derivatives derivatives = Derivatives::Implicit;
 };
 
 // How one point was evaluated.
@@ -68,6 +76,8 @@ struct PointResult {
 std::string path_name(Path path);
 std::string basis_name(Basis basis);
 Basis basis_from_name(const std::string& name);  // "constant" | "linear" | "quadratic"
+Derivatives derivatives_from_name(const std::string& name);  // "implicit" | "direct"
+std::string derivatives_name(Derivatives d);
 
 // Number of monomials of the basis in Dim dimensions (3/6 in 2D, 4/10 in 3D for linear/quadratic).
 constexpr int basis_size(int dim, Basis basis) {
