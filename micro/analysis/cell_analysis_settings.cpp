@@ -25,6 +25,7 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
   if (curve_end_strain) o.max_strain = *curve_end_strain;
   opt(c, "rk.support_factor", o.rk.support_factor, Range::closed(1.0, 4.0));
   if (c.has("rk.kernel")) o.rk.kernel = kernel_from_name(c.choice("rk.kernel", {"cubic_bspline", "quartic_spline"}));
+  if (c.has("rk.derivatives")) o.rk.derivatives = rk::derivatives_from_name(c.choice("rk.derivatives", {"implicit", "direct"}));
   opt(c, "quadrature.triangle_points", o.rk.triangle_points, Range::closed(1, 12));
   if (!is_triangle_rule(o.rk.triangle_points))
     c.fail("quadrature.triangle_points",

@@ -37,6 +37,7 @@ void read_options(const Config& c, UniaxialOptions& o) {
   o.rk.support_factor = rk.number("support_factor", Range::closed(1.0, 4.0));
   const std::string kernel = rk.choice("kernel", {"cubic_bspline", "quartic_spline"});
   o.rk.kernel = kernel_from_name(kernel);
+  if (rk.has("derivatives")) o.rk.derivatives = rk::derivatives_from_name(rk.choice("derivatives", {"implicit", "direct"}));
   const Config q = c.section("quadrature");
   o.rk.triangle_points = static_cast<int>(q.integer("triangle_points", Range::closed(1, 12)));
   if (!is_triangle_rule(o.rk.triangle_points))

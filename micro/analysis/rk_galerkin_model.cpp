@@ -17,6 +17,7 @@ rk::Options rk_options(const RkGalerkinOptions& o) {
   r.kernel = o.kernel;
   r.basis = rk::Basis::Linear;
   r.gradients = true;
+  r.derivatives = o.derivatives;
   return r;
 }
 

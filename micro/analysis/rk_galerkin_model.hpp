@@ -28,6 +28,10 @@ struct RkGalerkinOptions {
   int triangle_points = 6;          // [choice] Dunavant rule: 1, 3, 6, 7 or 12 points
   int segment_points = 3;           // [choice] Gauss-Legendre points per boundary segment, 1..5
   IntegrationCorrection correction = IntegrationCorrection::Vci;  // [choice]
+  // [choice] trial and test gradients before the correction: the direct derivatives of Psi_I (default)
+  // or the implicit RK gradients (rk_shape.hpp). See the header: with implicit ones the VCI constants
+  // are large and the Petrov-Galerkin operator of a cracked porous cell can lose definiteness.
+  rk::Derivatives derivatives = rk::Derivatives::Direct;
 };
 
 // Points with their shape functions, in compressed rows (table.support.row(p) = nodes of point p).

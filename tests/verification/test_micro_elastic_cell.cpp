@@ -82,14 +82,17 @@ TEST(microElasticCell, PorousCellModulusConvergesUnderRefinement) {
                 cell.geometry.pores.size(), phi, h * 1e6, r.nodes, r.E0_bar_Pa * 1e-6,
                 r.E0_bar_Pa / kMatrix.plane_modulus_Pa(), r.hill_mandel_relative,
                 (r.far_face_force_N_m + r.near_face_force_N_m) / r.far_face_force_N_m);
-    EXPECT_LT(std::abs(r.hill_mandel_relative), 0.01);
+    EXPECT_LT(std::abs(r.hill_mandel_relative), 1e-3);  // 6e-5 measured (implicit gradients: 6e-3)
   }
   const double last_change = std::abs(e0[3] / e0[2] - 1.0);
   std::printf("change between the two finest: %.3f %%\n", 100.0 * last_change);
   EXPECT_LT(last_change, 0.01);
-  // Convergence from below: the implicit gradients smooth the strain over the support (like strain
-  // smoothing), which makes a coarse discretization softer; every refinement stiffens it.
-  for (std::size_t k = 1; k < e0.size(); ++k) EXPECT_GT(e0[k], e0[k - 1]);
+  // Convergence from above: with the direct derivatives (the default) the Galerkin scheme is, up to
+  // the small VCI constants, a conforming displacement method, too stiff when coarse; every refinement
+  // softens it (measured 41985, 41842, 41765, 41720 MPa). The implicit gradients smoothed the strain
+  // over the support and converged from below instead (40477, 40933, 41145, 41373 MPa: a change of
+  // 0.55 % between the two finest against 0.11 % now).
+  for (std::size_t k = 1; k < e0.size(); ++k) EXPECT_LT(e0[k], e0[k - 1]);
   // Against the Mori-Tanaka estimate for circular holes in plane elasticity.
   const double mt = 1.0 / (1.0 + 3.0 * phi), dilute = 1.0 - 3.0 * phi;
   const double ratio = e0[3] / kMatrix.plane_modulus_Pa();
