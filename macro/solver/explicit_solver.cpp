@@ -13,11 +13,46 @@
 namespace uhpc::macro {
 
 namespace {
-// second <- (first + second) / 2, elementwise (the endpoint-average strain rate).
-void average_into(const std::vector<double>& first, std::vector<double>& second) {
-  const std::int64_t n = static_cast<std::int64_t>(second.size());
-#pragma omp parallel for schedule(static) if (n >= 9 * kParallelMinParticles)
-  for (std::int64_t i = 0; i < n; ++i) second[i] = 0.5 * (first[i] + second[i]);
+// End-of-step strain (End, EndpointAverage), shapes prepared at x: the RK rows built one by one, and
+// with each row while it is still in cache its velocity gradients (averaged with the start-of-step
+// L_start, G_start when given), the stress update of its particle and its internal forces, instead of
+// four passes over the stored table. The same values, bitwise, as those passes: every particle sees
+// the same sums, and the static schedule gives each thread's force buffer the rows and the stress
+// sums the terms in the order of InternalForce::compute and update_stresses.
+template <class Block>
+StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& force, Block& block, Particles& p,
+                                          const double* L_start, const double* G_start, double dt,
+                                          const BulkViscosity& viscosity) {
+  const std::int64_t n = static_cast<std::int64_t>(p.n);
+  const bool nsni = shapes.has_second_gradients() && !p.stress_grad.empty();
+  double work = 0.0, visc = 0.0, stab = 0.0, dt_min = std::numeric_limits<double>::infinity();
+  std::int64_t inverted = -1;
+#pragma omp parallel reduction(+ : work, visc, stab) reduction(min : dt_min) reduction(max : inverted) if (n >= kParallelMinParticles)
+  {
+    double* scratch = shapes.thread_scratch();
+    double* buf = force.begin(p.n);
+    StressUpdateSums sums;
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+      shapes.build_row(i, scratch);
+      const std::int64_t b = shapes.support.begin(i);
+      double* L = p.vel_grad.data() + 9 * i;
+      double* G = nsni ? p.vel_grad_grad.data() + 27 * i : nullptr;
+      point_velocity_gradients(shapes.support.row(i), shapes.support.count(i), shapes.grad.data() + 3 * b,
+                               nsni ? shapes.hess.data() + 6 * b : nullptr, p.v.data(), i, L, G);
+      if (L_start) {
+        for (int m = 0; m < 9; ++m) L[m] = 0.5 * (L_start[9 * i + m] + L[m]);
+        if (G)
+          for (int m = 0; m < 27; ++m) G[m] = 0.5 * (G_start[27 * i + m] + G[m]);
+      }
+      update_stress(block, p, i, dt, viscosity, sums);
+      InternalForce::add_row(shapes, i, p.stress.data(), p.bulk_q.data(), p.volume.data(),
+                             nsni ? p.stress_grad.data() : nullptr, buf);
+    }
+    force.finish(p.n, p.f_int.data());
+    add_sums(sums, work, visc, stab, dt_min, inverted);
+  }
+  return {work, visc, stab, dt_min, inverted};
 }
 }  // namespace
 
@@ -36,6 +71,7 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
   if (!(options_.domain_margin > 0)) throw std::invalid_argument("ExplicitSolver: domain_margin must be > 0");
   if (!(options_.neighbour_skin >= 0)) throw std::invalid_argument("ExplicitSolver: neighbour_skin must be >= 0");
   shapes_.skin = options_.neighbour_skin;
+  shapes_.keep_psi = false;  // the step reads only the gradients
   f_ext_old_.assign(3 * p_.n, 0.0);
   f_contact_old_.assign(3 * p_.n, 0.0);
   if (p_.f_contact.size() != 3 * p_.n) p_.f_contact.assign(3 * p_.n, 0.0);
@@ -60,13 +96,13 @@ const SecondGradientOptions* ExplicitSolver::second_options() const {
   return options_.stabilization == Stabilization::Nsni ? &options_.second_gradients : nullptr;
 }
 
-void ExplicitSolver::rebuild_shapes(const double* x) {
-  shapes_.rebuild(options_.rk, x, p_.support.data(), p_.n, second_options());
+void ExplicitSolver::rebuild_shapes(const double* x, double* L, double* G) {
+  const RowVelocityGradients gradients{p_.v.data(), L, G};
+  shapes_.rebuild(options_.rk, x, p_.support.data(), p_.n, second_options(), L ? &gradients : nullptr);
 }
 
 void ExplicitSolver::velocity_gradients(double* L, double* G) const {
-  velocity_gradient(shapes_, p_.v.data(), p_.n, L);
-  if (G) velocity_gradient_gradient(shapes_, p_.v.data(), p_.n, G);
+  uhpc::macro::velocity_gradients(shapes_, p_.v.data(), p_.n, L, G);
 }
 
 void ExplicitSolver::initialize() {
@@ -158,16 +194,25 @@ void ExplicitSolver::compute_accelerations(double dt) {
     for (std::int64_t i = 0; i < 3 * n; ++i) p_.x_mid[i] = 0.5 * (p_.x_prev[i] + p_.x[i]);
     x_strain = p_.x_mid.data();
   }
-  rebuild_shapes(x_strain);
-  shapes_at_x_ = config != StrainConfiguration::Midpoint;
-  velocity_gradients(p_.vel_grad.data(), nsni ? p_.vel_grad_grad.data() : nullptr);
-  if (config == StrainConfiguration::EndpointAverage) {
-    average_into(vel_grad_start_, p_.vel_grad);
-    if (nsni) average_into(vel_grad_grad_start_, p_.vel_grad_grad);
+  StressUpdateSums sums;
+  if (config == StrainConfiguration::Midpoint) {
+    // The strain-configuration gradients come out of the rebuild, row by row; the forces need the
+    // shapes at x, rebuilt below.
+    rebuild_shapes(x_strain, p_.vel_grad.data(), nsni ? p_.vel_grad_grad.data() : nullptr);
+    shapes_at_x_ = false;
+    sums = std::visit([&](auto& block) { return update_stresses(block, p_, dt, options_.viscosity); }, material_);
+  } else {
+    shapes_.prepare(options_.rk, x_strain, p_.support.data(), p_.n, second_options());
+    shapes_at_x_ = true;
+    const bool average = config == StrainConfiguration::EndpointAverage;
+    sums = std::visit(
+        [&](auto& block) {
+          return rows_stresses_and_forces(shapes_, force_, block, p_, average ? vel_grad_start_.data() : nullptr,
+                                          average && nsni ? vel_grad_grad_start_.data() : nullptr, dt,
+                                          options_.viscosity);
+        },
+        material_);
   }
-
-  const StressUpdateSums sums =
-      std::visit([&](auto& block) { return update_stresses(block, p_, dt, options_.viscosity); }, material_);
   ledger_.internal += sums.stress_work + sums.stabilization_work;
   ledger_.stabilization += sums.stabilization_work;
   ledger_.viscous += sums.viscous_work;
@@ -178,7 +223,7 @@ void ExplicitSolver::compute_accelerations(double dt) {
     rebuild_shapes(p_.x.data());
     shapes_at_x_ = true;
   }
-  compute_forces(dt);
+  compute_forces(dt, config == StrainConfiguration::Midpoint);
   if (sphere_) {
     dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
     // Work of the contact pair forces over the step (trapezoid), on the particles and on the sphere;
@@ -213,9 +258,10 @@ void ExplicitSolver::compute_accelerations(double dt) {
   std::copy(p_.f_ext.begin(), p_.f_ext.end(), f_ext_old_.begin());
 }
 
-void ExplicitSolver::compute_forces(double dt) {
-  force_.compute(shapes_, p_.stress.data(), p_.bulk_q.data(), p_.volume.data(), p_.n, p_.f_int.data(),
-                 p_.stress_grad.empty() ? nullptr : p_.stress_grad.data());
+void ExplicitSolver::compute_forces(double dt, bool internal) {
+  if (internal)
+    force_.compute(shapes_, p_.stress.data(), p_.bulk_q.data(), p_.volume.data(), p_.n, p_.f_int.data(),
+                   p_.stress_grad.empty() ? nullptr : p_.stress_grad.data());
   const std::int64_t n = static_cast<std::int64_t>(p_.n);
   double wall_total = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : wall_total) if (n >= kParallelMinParticles)

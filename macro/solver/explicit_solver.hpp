@@ -65,7 +65,7 @@ struct SolverOptions {
   // Verlet skin of the neighbour search, as a fraction of the smallest support radius (ShapeCache::skin):
   // candidate lists are searched with the radii grown by it and reused, filtered exactly, until some
   // particle has moved half the skin. Exact (the lists equal a fresh search); 0: search every rebuild.
-  double neighbour_skin = 0.1;
+  double neighbour_skin = 0.2;
   // Step-collapse guard: repeat a step whose new stable step is below this fraction of the step taken
   // (0 switches the guard off; so does fixed_dt_s). With CFL 0.4 and 0.5 an accepted step was at most
   // 0.8 of the critical step of the configuration it produced.
@@ -128,13 +128,16 @@ class ExplicitSolver {
  private:
   const SecondGradientOptions* second_options() const;  // null without NSNI
   // f_int, f_ext and a at the current configuration (shapes_ up to date); dt: the step (friction's cap).
-  void compute_forces(double dt);
+  // internal false: f_int is already there (computed with the stress update, compute_accelerations).
+  void compute_forces(double dt, bool internal = true);
   void update_momentum_and_kinetic();
   StepFailure attempt(double h);  // one velocity Verlet step of size h and the checks
   void save_state();
   Region default_domain() const;
   void restore_state();
-  void rebuild_shapes(const double* x);  // shapes_ at the n points x (the particles' supports)
+  // shapes_ at the n points x (the particles' supports); with L non-null also L (9n) and, with G
+  // non-null (NSNI), dL/dx (27n) of the current velocities with the new shapes.
+  void rebuild_shapes(const double* x, double* L = nullptr, double* G = nullptr);
   // L (9n) and, with G non-null (NSNI), dL/dx (27n) of the current velocities with shapes_.
   void velocity_gradients(double* L, double* G) const;
 

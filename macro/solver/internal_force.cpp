@@ -12,66 +12,80 @@ namespace uhpc::macro {
 
 void InternalForce::compute(const ShapeCache& shapes, const double* stress, const double* bulk_q,
                             const double* volume, std::size_t n, double* f, const double* stress_grad) {
-  const bool nsni = stress_grad != nullptr && shapes.has_second_gradients();
+  if (!shapes.has_second_gradients()) stress_grad = nullptr;
   const std::int64_t nn = static_cast<std::int64_t>(n);
 #pragma omp parallel if (nn >= kParallelMinParticles)
   {
-    const int threads = team_size(), t = team_index();
+    double* buf = begin(n);
+#pragma omp for schedule(static)
+    for (std::int64_t L = 0; L < nn; ++L) add_row(shapes, L, stress, bulk_q, volume, stress_grad, buf);
+    finish(n, f);
+  }
+}
+
+double* InternalForce::begin(std::size_t n) {
 #pragma omp single
-    {
-      if (buffers_.size() < static_cast<std::size_t>(threads)) buffers_.resize(threads);
-      for (auto& b : buffers_)
-        if (b.size() < 3 * n) b.resize(3 * n);
+  {
+    if (buffers_.size() < static_cast<std::size_t>(team_size())) buffers_.resize(team_size());
+    for (auto& b : buffers_)
+      if (b.size() < 3 * n) b.resize(3 * n);
+  }
+  double* buf = buffers_[team_index()].data();
+  std::fill(buf, buf + 3 * n, 0.0);
+  return buf;
+}
+
+void InternalForce::add_row(const ShapeCache& shapes, std::int64_t L, const double* stress, const double* bulk_q,
+                            const double* volume, const double* stress_grad, double* buf) {
+  double s[9];
+  const double q = bulk_q ? bulk_q[L] : 0.0;
+  for (int m = 0; m < 9; ++m) s[m] = volume[L] * stress[9 * L + m];
+  for (int d = 0; d < 3; ++d) s[4 * d] -= volume[L] * q;
+  const std::int32_t* row = shapes.support.row(L);
+  const std::int64_t b = shapes.support.begin(L), count = shapes.support.count(L);
+  if (!stress_grad) {
+    for (std::int64_t k = 0; k < count; ++k) {
+      const double* dpsi = shapes.grad.data() + 3 * (b + k);
+      double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
+      for (int r = 0; r < 3; ++r) fi[r] -= s[3 * r] * dpsi[0] + s[3 * r + 1] * dpsi[1] + s[3 * r + 2] * dpsi[2];
     }
-    double* buf = buffers_[t].data();
-    std::fill(buf, buf + 3 * n, 0.0);
-#pragma omp for schedule(static)
-    for (std::int64_t L = 0; L < nn; ++L) {
-      double s[9];
-      const double q = bulk_q ? bulk_q[L] : 0.0;
-      for (int m = 0; m < 9; ++m) s[m] = volume[L] * stress[9 * L + m];
-      for (int d = 0; d < 3; ++d) s[4 * d] -= volume[L] * q;
-      const std::int32_t* row = shapes.support.row(L);
-      const std::int64_t b = shapes.support.begin(L), count = shapes.support.count(L);
-      if (!nsni) {
-        for (std::int64_t k = 0; k < count; ++k) {
-          const double* dpsi = shapes.grad.data() + 3 * (b + k);
-          double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
-          for (int r = 0; r < 3; ++r) fi[r] -= s[3 * r] * dpsi[0] + s[3 * r + 1] * dpsi[1] + s[3 * r + 2] * dpsi[2];
-        }
-        continue;
-      }
-      // tg[j][m] = M_L * sum over the pairs (d, k) with sym_index m of dsigma_jk/dx_d: Psi^(dk) is
-      // symmetric in (d, k), so the off-diagonal pairs add up.
-      const double moment = std::cbrt(volume[L] * volume[L] * volume[L] * volume[L] * volume[L]) / 12.0;
-      const double* sg = stress_grad + 27 * L;
-      double tg[3][6];
-      for (int j = 0; j < 3; ++j) {
-        for (int m = 0; m < 6; ++m) tg[j][m] = 0.0;
-        for (int d = 0; d < 3; ++d)
-          for (int c = 0; c < 3; ++c) tg[j][sym_index(d, c)] += moment * sg[9 * d + 3 * j + c];
-      }
-      // One pass over the row: each node appears once in it, so every buffer entry still receives the
-      // nodal-integration term and then the NSNI term of this L, as with two passes.
-      for (std::int64_t k = 0; k < count; ++k) {
-        const double* dpsi = shapes.grad.data() + 3 * (b + k);
-        const double* h2 = shapes.hess.data() + 6 * (b + k);
-        double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
-        for (int r = 0; r < 3; ++r) fi[r] -= s[3 * r] * dpsi[0] + s[3 * r + 1] * dpsi[1] + s[3 * r + 2] * dpsi[2];
-        for (int j = 0; j < 3; ++j) {
-          double sum = 0.0;
-          for (int m = 0; m < 6; ++m) sum += tg[j][m] * h2[m];
-          fi[j] -= sum;
-        }
-      }
-    }
-    // The implicit barrier of the loop above: every buffer is complete before the sum.
-#pragma omp for schedule(static)
-    for (std::int64_t i = 0; i < 3 * nn; ++i) {
+    return;
+  }
+  // tg[j][m] = M_L * sum over the pairs (d, k) with sym_index m of dsigma_jk/dx_d: Psi^(dk) is
+  // symmetric in (d, k), so the off-diagonal pairs add up.
+  const double moment = std::cbrt(volume[L] * volume[L] * volume[L] * volume[L] * volume[L]) / 12.0;
+  const double* sg = stress_grad + 27 * L;
+  double tg[3][6];
+  for (int j = 0; j < 3; ++j) {
+    for (int m = 0; m < 6; ++m) tg[j][m] = 0.0;
+    for (int d = 0; d < 3; ++d)
+      for (int c = 0; c < 3; ++c) tg[j][sym_index(d, c)] += moment * sg[9 * d + 3 * j + c];
+  }
+  // One pass over the row: each node appears once in it, so every buffer entry still receives the
+  // nodal-integration term and then the NSNI term of this L, as with two passes.
+  for (std::int64_t k = 0; k < count; ++k) {
+    const double* dpsi = shapes.grad.data() + 3 * (b + k);
+    const double* h2 = shapes.hess.data() + 6 * (b + k);
+    double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
+    for (int r = 0; r < 3; ++r) fi[r] -= s[3 * r] * dpsi[0] + s[3 * r + 1] * dpsi[1] + s[3 * r + 2] * dpsi[2];
+    for (int j = 0; j < 3; ++j) {
       double sum = 0.0;
-      for (int u = 0; u < threads; ++u) sum += buffers_[u][i];
-      f[i] = sum;
+      for (int m = 0; m < 6; ++m) sum += tg[j][m] * h2[m];
+      fi[j] -= sum;
     }
+  }
+}
+
+void InternalForce::finish(std::size_t n, double* f) {
+  const int threads = team_size();
+  const std::int64_t nn = static_cast<std::int64_t>(n);
+#pragma omp barrier
+  // (every buffer complete before the sum)
+#pragma omp for schedule(static)
+  for (std::int64_t i = 0; i < 3 * nn; ++i) {
+    double sum = 0.0;
+    for (int u = 0; u < threads; ++u) sum += buffers_[u][i];
+    f[i] = sum;
   }
 }
 

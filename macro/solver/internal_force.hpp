@@ -7,6 +7,7 @@
 // buffer (kept between calls) and the buffers are summed; the result does not depend on scheduling
 // for a fixed thread count.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "solver/shape_cache.hpp"
@@ -21,6 +22,15 @@ class InternalForce {
   // the second moment of a cube of volume V_L about its centre in each direction.
   void compute(const ShapeCache& shapes, const double* stress, const double* bulk_q, const double* volume,
                std::size_t n, double* f, const double* stress_grad = nullptr);
+
+  // The same in parts, for a caller that adds each row while the row's gradients are still in cache.
+  // Inside a parallel region: begin on every thread (its zeroed buffer), add_row for the rows L of an
+  // `omp for schedule(static)` loop, then finish on every thread (f = the sum of the buffers). The
+  // buffers then receive the rows as compute gives them: the same f, bitwise.
+  double* begin(std::size_t n);
+  static void add_row(const ShapeCache& shapes, std::int64_t L, const double* stress, const double* bulk_q,
+                      const double* volume, const double* stress_grad, double* buf);
+  void finish(std::size_t n, double* f);
 
  private:
   std::vector<std::vector<double>> buffers_;

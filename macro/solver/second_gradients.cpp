@@ -502,7 +502,8 @@ SecondGradientPath shape_and_second_gradients(const rk::Options& rk_options, con
                                               const std::int32_t* nbr, int n, double* psi, double* grad,
                                               double* hess, rk::PointResult& result) {
   const bool fusable = rk_options.basis == rk::Basis::Linear && rk_options.gradients &&
-                       rk_options.kernel == options.kernel && n <= kMaxNodes && n >= 4;
+                       rk_options.derivatives == rk::Derivatives::Implicit && rk_options.kernel == options.kernel &&
+                       n <= kMaxNodes && n >= 4;
   auto separate = [&]() {
     result = rk::evaluate<3>(rk_options, x, nodes, support, nbr, n, psi, grad);
     return second_gradients(options, x, nodes, support, nbr, n, hess);
@@ -523,7 +524,8 @@ SecondGradientPath shape_and_second_gradients(const rk::Options& rk_options, con
 rk::PointResult shape_gradients(const rk::Options& rk_options, const double* x, const double* nodes,
                                 const double* support, const std::int32_t* nbr, int n, double* psi, double* grad) {
   rk::PointResult result;
-  if (rk_options.basis != rk::Basis::Linear || !rk_options.gradients || n > kMaxNodes)
+  if (rk_options.basis != rk::Basis::Linear || !rk_options.gradients ||
+      rk_options.derivatives != rk::Derivatives::Implicit || n > kMaxNodes)
     return rk::evaluate<3>(rk_options, x, nodes, support, nbr, n, psi, grad);
   Neighbourhood nb;
   if (!nb.build<false>(rk_options.kernel, x, nodes, support, nbr, n))

@@ -51,8 +51,8 @@ SecondGradientPath second_gradients(const SecondGradientOptions& options, const 
 // The RK shape functions and first gradients (rk::evaluate<3>, linear basis) and the second
 // derivatives above in one pass: one kernel evaluation and one set of moments per neighbour (the
 // linear moment matrix is a block of the quadratic one). Same results as the two routines up to
-// round-off; points where rk_shape leaves its full path (quasi-linear, fallback, empty), other bases
-// or kernels, and more than 512 nodes go through the two routines themselves. Allocation-free.
+// round-off; points where rk_shape leaves its full path (quasi-linear, fallback, empty), other bases,
+// kernels or direct derivatives, and more than 512 nodes go through the two routines themselves. Allocation-free.
 SecondGradientPath shape_and_second_gradients(const rk::Options& rk_options, const SecondGradientOptions& options,
                                               const double* x, const double* nodes, const double* support,
                                               const std::int32_t* nbr, int n, double* psi, double* grad,

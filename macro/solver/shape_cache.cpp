@@ -1,6 +1,9 @@
 #include "solver/shape_cache.hpp"
 #include "solver/parallel.hpp"
 
+#include "solver/kinematics.hpp"
+#include "uhpc/parallel.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -16,6 +19,27 @@ void resize_with_headroom(std::vector<double>& v, std::size_t size) {
 }  // namespace
 
 void ShapeCache::rebuild(const rk::Options& options, const double* x, const double* support_radius, std::size_t n,
+                         const SecondGradientOptions* second, const RowVelocityGradients* gradients) {
+  prepare(options, x, support_radius, n, second);
+  const std::int64_t nq = static_cast<std::int64_t>(n);
+#pragma omp parallel if (nq >= kParallelMinParticles)
+  {
+    double* scratch = thread_scratch();
+#pragma omp for schedule(dynamic, 128)
+    for (std::int64_t p = 0; p < nq; ++p) {
+      build_row(p, scratch);
+      if (gradients) {
+        const std::int64_t b = support.begin(p);
+        const bool with_g = second && gradients->G;
+        point_velocity_gradients(support.row(p), support.count(p), grad.data() + 3 * b,
+                                 with_g ? hess.data() + 6 * b : nullptr, gradients->v, p, gradients->L + 9 * p,
+                                 with_g ? gradients->G + 27 * p : nullptr);
+      }
+    }
+  }
+}
+
+void ShapeCache::prepare(const rk::Options& options, const double* x, const double* support_radius, std::size_t n,
                          const SecondGradientOptions* second) {
   if (skin > 0.0) {
     find_with_skin(x, support_radius, n);
@@ -29,7 +53,10 @@ void ShapeCache::rebuild(const rk::Options& options, const double* x, const doub
   if (support.indices.capacity() < entries + entries / 10) support.indices.reserve(entries + entries / 4);
   for (auto& block : workspace.blocks)
     if (block.capacity() < block.size() + block.size() / 10) block.reserve(block.size() + block.size() / 4);
-  resize_with_headroom(psi, entries);
+  longest_ = 0;
+  if (!keep_psi)
+    for (std::size_t p = 0; p < n; ++p) longest_ = std::max(longest_, support.count(p));
+  if (keep_psi) resize_with_headroom(psi, entries);
   resize_with_headroom(grad, 3 * entries);
   info.resize(n);
   if (second) {
@@ -38,20 +65,30 @@ void ShapeCache::rebuild(const rk::Options& options, const double* x, const doub
   } else {
     hess.clear();
   }
-  const std::int64_t nq = static_cast<std::int64_t>(n);
-  rk::Options opt = options;
-  opt.gradients = true;
-#pragma omp parallel for schedule(dynamic, 128) if (nq >= kParallelMinParticles)
-  for (std::int64_t p = 0; p < nq; ++p) {
-    const std::int64_t b = support.begin(p);
-    if (second) {
-      hess_path[p] = shape_and_second_gradients(opt, *second, x + 3 * p, x, support_radius, support.row(p),
-                                                static_cast<int>(support.count(p)), psi.data() + b,
-                                                grad.data() + 3 * b, hess.data() + 6 * b, info[p]);
-    } else {
-      info[p] = shape_gradients(opt, x + 3 * p, x, support_radius, support.row(p), static_cast<int>(support.count(p)),
-                                psi.data() + b, grad.data() + 3 * b);
-    }
+  options_ = options;
+  options_.gradients = true;
+  second_ = second;
+  x_ = x;
+  support_radius_ = support_radius;
+}
+
+double* ShapeCache::thread_scratch() {
+#pragma omp single
+  if (!keep_psi) resize_with_headroom(psi, static_cast<std::size_t>(team_size() * longest_));
+  // (the implicit barrier of single: psi has its final address)
+  return keep_psi ? nullptr : psi.data() + team_index() * longest_;
+}
+
+void ShapeCache::build_row(std::int64_t p, double* scratch) {
+  const std::int64_t b = support.begin(p);
+  const std::int32_t* row = support.row(p);
+  const int count = static_cast<int>(support.count(p));
+  double* values = keep_psi ? psi.data() + b : scratch;
+  if (second_) {
+    hess_path[p] = shape_and_second_gradients(options_, *second_, x_ + 3 * p, x_, support_radius_, row, count, values,
+                                              grad.data() + 3 * b, hess.data() + 6 * b, info[p]);
+  } else {
+    info[p] = shape_gradients(options_, x_ + 3 * p, x_, support_radius_, row, count, values, grad.data() + 3 * b);
   }
 }
 

@@ -15,9 +15,21 @@
 
 namespace uhpc::macro {
 
+// What ShapeCache::rebuild computes from each row right after building it, while the row is still in
+// cache (instead of a second pass over the stored table): the velocity gradients of kinematics.hpp,
+// L (9n) and, with second gradients and G non-null, G (27n), of the velocities v (3n).
+struct RowVelocityGradients {
+  const double* v = nullptr;
+  double* L = nullptr;
+  double* G = nullptr;
+};
+
 struct ShapeCache {
   NeighbourList support;           // support.row(L): the particles J whose support covers x_L
-  std::vector<double> psi;         // Psi_J(x_L), one per entry
+  // keep_psi: Psi_J(x_L), one per entry. Otherwise (the solver: nothing of its step reads the values)
+  // only per-thread scratch of the evaluation, which is not written back to memory.
+  std::vector<double> psi;
+  bool keep_psi = true;
   std::vector<double> grad;        // grad Psi_J(x_L), 3 per entry
   std::vector<rk::PointResult> info;
   std::vector<double> hess;                      // NSNI: Psi^(ij)_J(x_L), 6 per entry (second_gradients.hpp)
@@ -33,10 +45,27 @@ struct ShapeCache {
   std::vector<std::int32_t> filtered;
   std::size_t searches = 0, reuses = 0;  // rebuilds that searched / that reused the candidates
 
+ private:
+  // The arguments of the last prepare(), for build_row.
+  rk::Options options_;
+  const SecondGradientOptions* second_ = nullptr;
+  const double* x_ = nullptr;
+  const double* support_radius_ = nullptr;
+  std::int64_t longest_ = 0;  // the longest row (the evaluation scratch per thread without keep_psi)
+
+ public:
+
   // Rebuilds at the n points `x` (3n), which are also the nodes, with support radii `support`; with
-  // `second` also the implicit second derivatives on the same lists.
+  // `second` also the implicit second derivatives on the same lists; with `gradients` also those.
   void rebuild(const rk::Options& options, const double* x, const double* support, std::size_t n,
-               const SecondGradientOptions* second = nullptr);
+               const SecondGradientOptions* second = nullptr, const RowVelocityGradients* gradients = nullptr);
+  // The same in parts, for a caller that works on each row while it is still in cache: prepare (the
+  // neighbour lists and the sizes; keeps the pointers for build_row), then, from inside a parallel
+  // region, thread_scratch once per thread and build_row for every point. rebuild is exactly that.
+  void prepare(const rk::Options& options, const double* x, const double* support, std::size_t n,
+               const SecondGradientOptions* second);
+  double* thread_scratch();  // per-thread evaluation buffer (null with keep_psi); call from every thread
+  void build_row(std::int64_t p, double* scratch);
   std::size_t count(rk::Path path) const;
   void find_with_skin(const double* x, const double* support_radius, std::size_t n);  // fills `support`
   std::size_t count(SecondGradientPath path) const;

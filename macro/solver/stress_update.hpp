@@ -37,65 +37,88 @@ struct StressUpdateSums {
   std::int64_t inverted = -1;  // a particle whose volume became non-positive or non-finite, else -1
 };
 
+// The update of particle i (reads p.vel_grad and, with NSNI, p.vel_grad_grad of i; writes its stress,
+// stress gradient, volume, density, wave speed and bulk viscosity), its shares added to `sums` (a
+// thread's running sums: the terms are added one by one, in the order of the particles).
+template <class Block>
+void update_stress(Block& block, Particles& p, std::int64_t i, double dt, const BulkViscosity& viscosity,
+                   StressUpdateSums& sums) {
+  const bool nsni = !p.stress_grad.empty();
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> L(p.vel_grad.data() + 9 * i);
+  const Mat3 D = 0.5 * (L + L.transpose());
+  const Mat3 W = 0.5 * (L - L.transpose());
+  const Mat3 I = Mat3::Identity();
+  const Mat3 R = (I - 0.25 * dt * W).inverse() * (I + 0.25 * dt * W);
+  const double trD = D.trace();
+
+  const double v_old = p.volume[i];
+  const double v_new = v_old * std::exp(trD * dt);
+  const double v_mid = v_old * std::exp(0.5 * trD * dt);
+  if (!(v_new > 0.0) || !std::isfinite(v_new)) sums.inverted = std::max(sums.inverted, i);
+
+  auto& state = block.state[static_cast<std::size_t>(i)];
+  const Mat3 s_a = R * state.stress * R.transpose();
+  state.stress = s_a;
+  MaterialStep step;
+  step.strain_increment = D * dt;
+  step.dt_s = dt;
+  step.density_ratio = p.volume0[i] / v_new;
+  step.spacing_m = p.spacing[i];
+  block.law.update(state, step);
+  sums.stress_work += 0.5 * (s_a + state.stress).cwiseProduct(D).sum() * dt * v_mid;
+  const Mat3 s_b = state.stress;  // the law's result, in the frame of the NSNI gradients below
+  state.stress = R * s_b * R.transpose();
+  Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.stress.data() + 9 * i) = state.stress;
+  if (nsni) {
+    const Moduli mod = block.law.moduli(state);
+    const StressGradientReturn gradient_return(s_b, mod);
+    const double lambda = mod.bulk_Pa - 2.0 / 3.0 * mod.shear_Pa;
+    const double moment = std::cbrt(v_mid * v_mid * v_mid * v_mid * v_mid) / 12.0;
+    for (int d = 0; d < 3; ++d) {
+      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> G(p.vel_grad_grad.data() + 27 * i + 9 * d);
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> sg(p.stress_grad.data() + 27 * i + 9 * d);
+      const Mat3 Dd = 0.5 * (G + G.transpose());
+      const Mat3 g_a = R * sg * R.transpose();
+      Mat3 g_b = g_a + (lambda * Dd.trace() * I + 2.0 * mod.shear_Pa * Dd) * dt;
+      gradient_return.apply(g_b);
+      sums.stabilization_work += moment * 0.5 * (g_a + g_b).cwiseProduct(Dd).sum() * dt;
+      sg = R * g_b * R.transpose();
+    }
+  }
+
+  p.volume[i] = v_new;
+  p.density[i] = p.mass[i] / v_new;
+  const double c = block.law.wave_speed(state, step.density_ratio);
+  p.wave_speed[i] = c;
+  const double h = stable_length(v_new, p.spacing[i]);
+  const double q = viscosity.pressure(p.density[i], h, c, trD);
+  p.bulk_q[i] = q;
+  sums.viscous_work += -q * trD * dt * v_mid;
+  sums.min_critical_step = std::min(sums.min_critical_step, viscosity.critical_step(h, c, trD));
+}
+
+// Adds a thread's sums into the reduction variables of its parallel region (each starts at 0, so the
+// result is that of reducing the terms directly).
+inline void add_sums(const StressUpdateSums& s, double& work, double& visc, double& stab, double& dt_min,
+                     std::int64_t& inverted) {
+  work += s.stress_work;
+  visc += s.viscous_work;
+  stab += s.stabilization_work;
+  dt_min = std::min(dt_min, s.min_critical_step);
+  inverted = std::max(inverted, s.inverted);
+}
+
 template <class Block>
 StressUpdateSums update_stresses(Block& block, Particles& p, double dt, const BulkViscosity& viscosity) {
   const std::int64_t n = static_cast<std::int64_t>(p.n);
   double work = 0.0, visc = 0.0, stab = 0.0, dt_min = std::numeric_limits<double>::infinity();
   std::int64_t inverted = -1;
-  const bool nsni = !p.stress_grad.empty();
-#pragma omp parallel for schedule(static) reduction(+ : work, visc, stab) reduction(min : dt_min) reduction(max : inverted) if (n >= kParallelMinParticles)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> L(p.vel_grad.data() + 9 * i);
-    const Mat3 D = 0.5 * (L + L.transpose());
-    const Mat3 W = 0.5 * (L - L.transpose());
-    const Mat3 I = Mat3::Identity();
-    const Mat3 R = (I - 0.25 * dt * W).inverse() * (I + 0.25 * dt * W);
-    const double trD = D.trace();
-
-    const double v_old = p.volume[i];
-    const double v_new = v_old * std::exp(trD * dt);
-    const double v_mid = v_old * std::exp(0.5 * trD * dt);
-    if (!(v_new > 0.0) || !std::isfinite(v_new)) inverted = std::max(inverted, i);
-
-    auto& state = block.state[static_cast<std::size_t>(i)];
-    const Mat3 s_a = R * state.stress * R.transpose();
-    state.stress = s_a;
-    MaterialStep step;
-    step.strain_increment = D * dt;
-    step.dt_s = dt;
-    step.density_ratio = p.volume0[i] / v_new;
-    step.spacing_m = p.spacing[i];
-    block.law.update(state, step);
-    work += 0.5 * (s_a + state.stress).cwiseProduct(D).sum() * dt * v_mid;
-    const Mat3 s_b = state.stress;  // the law's result, in the frame of the NSNI gradients below
-    state.stress = R * s_b * R.transpose();
-    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.stress.data() + 9 * i) = state.stress;
-    if (nsni) {
-      const Moduli mod = block.law.moduli(state);
-      const StressGradientReturn gradient_return(s_b, mod);
-      const double lambda = mod.bulk_Pa - 2.0 / 3.0 * mod.shear_Pa;
-      const double moment = std::cbrt(v_mid * v_mid * v_mid * v_mid * v_mid) / 12.0;
-      for (int d = 0; d < 3; ++d) {
-        const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> G(p.vel_grad_grad.data() + 27 * i + 9 * d);
-        Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> sg(p.stress_grad.data() + 27 * i + 9 * d);
-        const Mat3 Dd = 0.5 * (G + G.transpose());
-        const Mat3 g_a = R * sg * R.transpose();
-        Mat3 g_b = g_a + (lambda * Dd.trace() * I + 2.0 * mod.shear_Pa * Dd) * dt;
-        gradient_return.apply(g_b);
-        stab += moment * 0.5 * (g_a + g_b).cwiseProduct(Dd).sum() * dt;
-        sg = R * g_b * R.transpose();
-      }
-    }
-
-    p.volume[i] = v_new;
-    p.density[i] = p.mass[i] / v_new;
-    const double c = block.law.wave_speed(state, step.density_ratio);
-    p.wave_speed[i] = c;
-    const double h = stable_length(v_new, p.spacing[i]);
-    const double q = viscosity.pressure(p.density[i], h, c, trD);
-    p.bulk_q[i] = q;
-    visc += -q * trD * dt * v_mid;
-    dt_min = std::min(dt_min, viscosity.critical_step(h, c, trD));
+#pragma omp parallel reduction(+ : work, visc, stab) reduction(min : dt_min) reduction(max : inverted) if (n >= kParallelMinParticles)
+  {
+    StressUpdateSums sums;
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) update_stress(block, p, i, dt, viscosity, sums);
+    add_sums(sums, work, visc, stab, dt_min, inverted);
   }
   return {work, visc, stab, dt_min, inverted};
 }
