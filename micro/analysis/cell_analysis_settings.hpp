@@ -5,7 +5,7 @@
 // error at the caller's finish(). Errors are uhpc::InputError "<file>: key 'k': reason".
 //
 // Keys (section-relative; defaults in cell_analysis.hpp):
-//   rk.support_factor, rk.kernel ("cubic_bspline" | "quartic_spline"),
+//   rk.support_factor, rk.kernel ("cubic_bspline" | "quartic_spline"), rk.derivatives ("direct" | "implicit"),
 //   quadrature.triangle_points (1, 3, 6, 7, 12), quadrature.segment_points (1..5),
 //   quadrature.correction ("vci" | "none"), quadrature.crack_points (1..5),
 //   essential_bc.nitsche_factor,

@@ -215,6 +215,14 @@ TEST(microCellAnalysisSettings, ProcessZoneControlAndEnergyTolerance) {
             "run.json: key 'analysis.path.zone_control': expected a string, got a boolean");
 }
 
+TEST(microCellAnalysisSettings, DerivativesAndEnrichmentThreshold) {
+  EXPECT_EQ(read(R"({"analysis": {}})").rk.derivatives, rk::Derivatives::Direct);
+  EXPECT_DOUBLE_EQ(read(R"({"analysis": {}})").enrichment.min_enrichment_ratio, 1e-6);
+  EXPECT_EQ(read(R"({"analysis": {"rk": {"derivatives": "implicit"}}})").rk.derivatives, rk::Derivatives::Implicit);
+  EXPECT_EQ(error(R"({"analysis": {"rk": {"derivatives": "exact"}}})"),
+            "run.json: key 'analysis.rk.derivatives': value 'exact' is not one of: implicit, direct");
+}
+
 TEST(microCellAnalysisSettings, MaterialOfTable2) {
   const Config c = Config::from_json(nlohmann::json::parse(R"({"matrix": {"youngs_modulus_Pa": 4.4296e10,
       "poissons_ratio": 0.2, "tensile_strength_Pa": 22.7e6, "fracture_energy_J_m2": 35.0}})"), "micro.json");
