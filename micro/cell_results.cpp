@@ -173,9 +173,11 @@ nlohmann::json cell_summary_json(const CellJob& job, const CellResult& r, const 
     j["dissipated_energy_J_m"] = f.dissipated_J_m;
     j["dissipated_energy_density_J_m3"] = f.dissipated_per_area_J_m3;
     const CellState& last = resp.states.back();
-    const double stored = last.bulk_energy_J_m + last.cohesive_energy_J_m + last.dissipated_J_m;
+    const double stored = last.bulk_energy_J_m + last.cohesive_energy_J_m + last.dissipated_J_m + last.jump_dissipated_J_m;
     j["external_work_J_m"] = last.external_work_J_m;
-    // Work balance at the last state: external work = stored + dissipated (quasi-static, no kinetic energy).
+    j["jump_dissipated_J_m"] = last.jump_dissipated_J_m;
+    // Work balance at the last state: external work = stored + dissipated + released in jumps (quasi-static
+    // between them, no kinetic energy).
     j["energy_balance_relative"] =
         last.external_work_J_m != 0.0 ? (last.external_work_J_m - stored) / last.external_work_J_m : 0.0;
     j["bridging"] = {{"max_abs_difference", r.path.max_abs_difference},
@@ -189,7 +191,7 @@ nlohmann::json cell_summary_json(const CellJob& job, const CellResult& r, const 
   } else {
     for (const char* k : {"peak_stress_Pa", "strain_at_peak", "strain_at_half_damage", "max_strain",
                           "dissipated_energy_J_m", "dissipated_energy_density_J_m3", "external_work_J_m",
-                          "energy_balance_relative", "bridging", "snap_back", "snap_back_jumps", "grid"})
+                          "energy_balance_relative", "jump_dissipated_J_m", "bridging", "snap_back", "snap_back_jumps", "grid"})
       j[k] = nullptr;
     j["bridging_error"] = r.bridging_error;
   }
@@ -197,6 +199,8 @@ nlohmann::json cell_summary_json(const CellJob& job, const CellResult& r, const 
   j["dofs"] = resp.dofs;
   j["enriched_nodes"] = resp.enriched_nodes;
   j["growth_unloads"] = resp.growth_unloads;
+  j["jumps"] = resp.jumps;
+  j["factorizations"] = resp.factorizations;
   j["operator_energy_mismatch"] = resp.operator_energy_mismatch;
   j["wall_s"] = resp.wall_s;
   j["post_options"] = post_options_json(o);
@@ -219,6 +223,7 @@ void write_cell_results(const fs::path& dir, const CellJob& job, const CellResul
     w.write("states/cohesive_energy", column(st, [](const CellState& s) { return s.cohesive_energy_J_m; }), "J/m");
     w.write("states/dissipated_energy", column(st, [](const CellState& s) { return s.dissipated_J_m; }), "J/m");
     w.write("states/external_work", column(st, [](const CellState& s) { return s.external_work_J_m; }), "J/m");
+    w.write("states/jump_dissipated", column(st, [](const CellState& s) { return s.jump_dissipated_J_m; }), "J/m");
     w.write("states/max_opening", column(st, [](const CellState& s) { return s.max_opening_m; }), "m");
     w.write("states/crack_segments", int_column(st, [](const CellState& s) { return s.crack_segments; }), "1");
     w.write("states/open_segments", int_column(st, [](const CellState& s) { return s.open_segments; }), "1");
@@ -272,8 +277,10 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
     r.nodes = j.at("nodes").get<std::size_t>();
     r.dofs = j.at("dofs").get<std::size_t>();
     r.enriched_nodes = j.at("enriched_nodes").get<std::size_t>();
-    r.growth_unloads = j.value("growth_unloads", std::size_t{0});  // absent in results made before the fallback existed
-    r.operator_energy_mismatch = j.value("operator_energy_mismatch", 0.0);  // absent before it existed
+    r.growth_unloads = j.at("growth_unloads").get<std::size_t>();
+    r.jumps = j.at("jumps").get<std::size_t>();
+    r.factorizations = j.at("factorizations").get<std::size_t>();
+    r.operator_energy_mismatch = j.at("operator_energy_mismatch").get<double>();
     r.wall_s = j.at("wall_s").get<double>();
     const std::lock_guard<std::mutex> lock(hdf5_mutex());
     const H5Reader h5(dir / "curves.h5");
@@ -284,12 +291,13 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
       const auto coh = h5.read_doubles("states/cohesive_energy").values;
       const auto diss = h5.read_doubles("states/dissipated_energy").values;
       const auto work = h5.read_doubles("states/external_work").values;
+      const auto jumped = h5.read_doubles("states/jump_dissipated").values;
       const auto opening = h5.read_doubles("states/max_opening").values;
       const auto segments = h5.read_int64("states/crack_segments").values;
       const auto open = h5.read_int64("states/open_segments").values;
       const auto newton = h5.read_int64("states/newton_iterations").values;
       const std::size_t n = strain.size();
-      for (const std::size_t len : {sigma.size(), bulk.size(), coh.size(), diss.size(), work.size(), opening.size(),
+      for (const std::size_t len : {sigma.size(), bulk.size(), coh.size(), diss.size(), work.size(), jumped.size(), opening.size(),
                                     segments.size(), open.size(), newton.size()})
         if (len != n) return std::nullopt;
       r.states.resize(n);
@@ -301,6 +309,7 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
         c.cohesive_energy_J_m = coh[i];
         c.dissipated_J_m = diss[i];
         c.external_work_J_m = work[i];
+        c.jump_dissipated_J_m = jumped[i];
         c.max_opening_m = opening[i];
         c.crack_segments = static_cast<std::size_t>(segments[i]);
         c.open_segments = static_cast<std::size_t>(open[i]);

@@ -18,7 +18,7 @@
 
 namespace uhpc::micro {
 
-inline constexpr const char* kCellSummaryFormat = "uhpc-micro-run/1";
+inline constexpr const char* kCellSummaryFormat = "uhpc-micro-run/2";
 
 // The post-processing options both commands read (keys "bridging" and "strain_grid").
 struct PostOptions {

@@ -72,6 +72,8 @@ class Analysis {
   long stage_id_ = 0;
   std::unique_ptr<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>> lu_;
   long lu_key_ = -1;
+  Eigen::SparseMatrix<double> J_;  // the bordered tangent lu_ factorized
+  std::size_t factorizations_ = 0;
   Eigen::VectorXd d_;
   double lambda_ = 0.0;
   double scale_ = 1.0;  // residual scale
@@ -94,12 +96,19 @@ class Analysis {
     operator_mismatch_ = b.operator_mismatch;
   }
   static double imbalance(const CellState& s) {
-    return s.bulk_energy_J_m + s.cohesive_energy_J_m + s.dissipated_J_m - s.external_work_J_m;
+    return s.bulk_energy_J_m + s.cohesive_energy_J_m + s.dissipated_J_m + s.jump_dissipated_J_m - s.external_work_J_m;
   }
   // The energy created since the last accepted state, if beyond the tolerance (else 0).
   double excess_energy(const CellState& s) const {
     const double created = imbalance(s) - imbalance_;
     return created > o_.energy_tolerance * std::max(max_work_, 1e-300) ? created : 0.0;
+  }
+  // stored + dissipated - work at the current state, leaving the bookkeeping as it was.
+  double current_imbalance() {
+    const Books b = books();
+    const double v = imbalance(state(0));
+    restore_books(b);
+    return v;
   }
   // The same at the current state, leaving the bookkeeping as it was.
   double excess_energy() {
@@ -112,7 +121,8 @@ class Analysis {
   void note_peak(const CellState& s) { peak_ = std::max(peak_, s.sigma_bar_Pa); }
   // GrowthFallback::UnloadAndRegrow: how often, whether the last grow() unloaded, and the dissipated
   // energy at the last unload (reloading ends when a point dissipates again).
-  std::size_t unloads_ = 0;
+  std::size_t unloads_ = 0, jumps_ = 0;
+  double jump_dissipated_ = 0.0;  // JumpFallback::Relax: energy released in jumps so far
   bool unloaded_ = false, reloading_ = false;
   double reload_dissipated_ = 0.0, unload_strain_ = 0.0;
   // The first reload step is a linear one under displacement control to this lambda (halved until
@@ -190,7 +200,12 @@ class Analysis {
     return l;
   }
 
-  NewtonResult newton(Hold hold, double target, std::vector<CohesiveHistory>& trial);
+  // Newton at the constraint `hold` = target; with `viscosity`, the relaxation's pseudo-time step.
+  NewtonResult newton(Hold hold, double target, std::vector<CohesiveHistory>& trial,
+                      const OpeningViscosity* viscosity = nullptr);
+  // JumpFallback::Relax: from the last accepted state, the far face one strain_increment further and
+  // the pseudo-time relaxation there (see cell_analysis.hpp). Returns "" or a diagnostic.
+  std::string relax(double dlambda, int& iterations);
   struct Snapshot {
     std::vector<Crack> cracks;
     std::vector<std::vector<CohesiveHistory>> history;
@@ -225,7 +240,8 @@ class Analysis {
   CellState state(int iterations);
 };
 
-NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHistory>& trial) {
+NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHistory>& trial,
+                              const OpeningViscosity* viscosity) {
   NewtonResult res;
   const std::vector<CohesiveHistory> committed = flat_history();
   FractureSystem& sys = *stage_.sys;
@@ -241,7 +257,7 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
   int halvings = 0;
   const double tolerance = o_.tolerance * scale_;
   for (int it = 0; it <= o_.max_iterations; ++it) {
-    sys.evaluate(d_, lambda_, law_, committed, true, r, eval_);
+    sys.evaluate(d_, lambda_, law_, committed, true, r, eval_, viscosity);
     const double cres = hold == Hold::Lambda ? lambda_ - target : g.dot(d_) - target;
     if (!r.allFinite()) {
       res.why = "the residual is not finite";
@@ -266,24 +282,35 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
       return res;
     }
     if (it == o_.max_iterations) break;
-    const Eigen::SparseMatrix<double> J = hold == Hold::Lambda ? sys.bordered(zero, 1.0) : sys.bordered(g, 0.0);
     // The pattern is fixed per stage and constraint: the ordering and symbolic analysis are reused.
     // (A zone's row has its own pattern: a new analysis per zone.)
-    const long key = hold == Hold::Zone ? -2 - zone_id_ : 2 * stage_id_ + (hold == Hold::Lambda ? 0 : 1);
-    if (!lu_ || key != lu_key_) {
-      lu_ = std::make_unique<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>>();
-      // No iterative refinement: Newton's own iterations correct the residual; refinement would
-      // only repeat a solve and a residual product per iteration (12 % of a run, same result).
-      lu_->umfpackControl()(UMFPACK_IRSTEP) = 0;
-      lu_->analyzePattern(J);
-      lu_key_ = key;
+    const long key = viscosity          ? -(1L << 40) - stage_id_
+                     : hold == Hold::Zone ? -2 - zone_id_
+                                          : 2 * stage_id_ + (hold == Hold::Lambda ? 0 : 1);
+    // The first iteration of a path step solves with the factorization of the last iteration before
+    // (same stage and constraint): its tangent has the points that were softening still softening,
+    // which is the better predictor, and the fresh tangent at the converged state would put them on
+    // their secants (their history has just been committed). Every later iteration is full Newton.
+    const bool reuse = it == 0 && lu_ && key == lu_key_;
+    if (!reuse) {
+      J_ = hold == Hold::Lambda ? sys.bordered(zero, 1.0) : sys.bordered(g, 0.0);
+      if (!lu_ || key != lu_key_) {
+        lu_ = std::make_unique<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>>();
+        // No iterative refinement: Newton's own iterations correct the residual; refinement would
+        // only repeat a solve and a residual product per iteration (12 % of a run, same result).
+        lu_->umfpackControl()(UMFPACK_IRSTEP) = 0;
+        lu_->analyzePattern(J_);
+        lu_key_ = key;
+      }
+      lu_->factorize(J_);  // keeps a reference to J_ (a member: it must outlive every solve)
+      ++factorizations_;
+      if (lu_->info() != Eigen::Success) {
+        lu_.reset();
+        res.why = "UMFPACK: singular bordered tangent";
+        return res;
+      }
     }
     Eigen::UmfPackLU<Eigen::SparseMatrix<double>>& lu = *lu_;
-    lu.factorize(J);  // keeps a reference to J, which lives until the solve below
-    if (lu.info() != Eigen::Success) {
-      res.why = "UMFPACK: singular bordered tangent";
-      return res;
-    }
     rhs.head(N) = -r;
     rhs[N] = -cres;
     const Eigen::VectorXd x = lu.solve(rhs);
@@ -374,6 +401,13 @@ std::string Analysis::grow(int& iterations) {
         ok = true;
         iterations += n.iterations;
         commit(trial);
+        // With the relaxation at hand, an equilibrium out of reach (one that creates energy: the held
+        // opening or displacement found a far branch) counts as none: the crack runs instead.
+        if (o_.growth_fallback == GrowthFallback::Relax)
+          if (const double created = excess_energy(); created > 0.0) {
+            ok = false;
+            why = unreachable(created);
+          }
       } else {
         why = n.why;
       }
@@ -381,6 +415,24 @@ std::string Analysis::grow(int& iterations) {
     if (!ok) {
       restore(before, true);
       if (o_.growth_fallback == GrowthFallback::Fail) return "re-equilibration after crack growth failed: " + why;
+      if (o_.growth_fallback == GrowthFallback::Relax) {
+        // The grown crack has no equilibrium near this one: it runs (a jump at this strain).
+        const double start = current_imbalance();
+        for (const std::size_t c : ready) advance_crack(cracks_, c, t[c].direction, cell_, mesh_, o_.growth);
+        build_stage();
+        if (const std::string r = relax(0.0, iterations); !r.empty()) {
+          restore(before, true);
+          return "re-equilibration after crack growth failed (" + why + "), and so did the relaxation: " + r;
+        }
+        const double released = start - current_imbalance();
+        if (released < -o_.energy_tolerance * max_work_) {
+          restore(before, true);
+          return "the relaxation after crack growth creates energy (" + unreachable(-released) + ")";
+        }
+        jump_dissipated_ += std::max(released, 0.0);
+        ++jumps_;
+        continue;
+      }
       if (const double created = excess_energy(); created > 0.0) return unreachable(created);
       unload_and_advance(ready, t);
       return "";  // at zero load no tip is at f_t
@@ -406,6 +458,46 @@ void Analysis::scale_to_envelope() {
   const double scale = (1.0 - 1e-9) / ratio;
   d_ *= scale;
   lambda_ *= scale;
+}
+
+std::string Analysis::relax(double dlambda, int& iterations) {
+  // A viscous stiffness above the softening slope makes every cohesive point monotone within a
+  // pseudo-step (plus the positive definite bulk), so Newton converges where the quasi-static path has
+  // no continuation. The pseudo-time step grows (k_v falls) after easy steps, since an unstable mode
+  // grows slowly at first, and shrinks (k_v x 4) when one does not converge. The jump ends when the
+  // openings stop moving and the law alone is in equilibrium.
+  const double softening = law_.tensile_strength_Pa / (law_.critical_opening() - law_.activation_opening());
+  const double settled = 1e-6 * law_.critical_opening();
+  const double target = lambda_ + dlambda;
+  double kv = o_.relaxation_ratio * softening;
+  Eigen::VectorXd r;
+  stage_.sys->evaluate(d_, lambda_, law_, flat_history(), false, r, eval_);
+  std::vector<std::array<double, 2>> reference = eval_.opening;
+  for (int k = 0; k < o_.max_relaxation_steps; ++k) {
+    const OpeningViscosity viscosity{kv, &reference};
+    const Eigen::VectorXd d0 = d_;
+    const double l0 = lambda_;
+    std::vector<CohesiveHistory> trial;
+    const NewtonResult n = newton(Hold::Lambda, target, trial, &viscosity);
+    if (!n.ok) {
+      d_ = d0;
+      lambda_ = l0;
+      kv *= 4.0;
+      if (kv > 1e3 * o_.relaxation_ratio * softening) return fmt::format("relaxation step {}: {}", k, n.why);
+      continue;
+    }
+    iterations += n.iterations;
+    commit(trial);
+    double moved = 0.0;
+    for (std::size_t p = 0; p < reference.size(); ++p)
+      moved = std::max(moved, std::hypot(eval_.opening[p][0] - reference[p][0], eval_.opening[p][1] - reference[p][1]));
+    reference = eval_.opening;
+    if (n.iterations <= o_.easy_iterations) kv = std::max(kv / o_.step_growth, 1e-2 * softening);
+    if (moved > settled) continue;
+    stage_.sys->evaluate(d_, lambda_, law_, flat_history(), false, r, eval_);
+    if (r.norm() <= o_.tolerance * scale_) return "";
+  }
+  return fmt::format("relaxation did not settle in {} pseudo-time steps", o_.max_relaxation_steps);
 }
 
 void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t) {
@@ -468,6 +560,7 @@ CellState Analysis::state(int iterations) {
   }
   s.cohesive_energy_J_m = coh;
   s.dissipated_J_m = dissipated(h);
+  s.jump_dissipated_J_m = jump_dissipated_;
   work_ += 0.5 * (last_force_ + F) * (lambda_ - last_lambda_);
   last_force_ = F;
   last_lambda_ = lambda_;
@@ -563,9 +656,22 @@ CellResponse Analysis::run(const FractureObserver& observer) {
   bool zone_mode = always_zone;  // stepping on the process-zone opening (after a fold of the global one)
   std::string opening_failure;
   out.status = CellStatus::StepLimit;
+  // Set where the path has no continuation at the smallest step: the next step is a jump (relax()).
+  std::string jump_reason;
   for (int step = 0; step < o_.max_steps; ++step) {
-    const bool reload = reload_lambda_ > 0.0;
-    const bool opening = !reload && o_.control == PathControl::CrackOpening && active_length() > 0.0;
+    const bool jump = !jump_reason.empty();
+    // A failure at the smallest step becomes a jump, once (JumpFallback::Relax), else the cell fails.
+    const auto jump_or_fail = [&](const std::string& diagnostic) {
+      if (o_.jump == JumpFallback::Relax && !jump && reload_lambda_ <= 0.0) {
+        jump_reason = diagnostic;
+        return true;
+      }
+      out.status = CellStatus::Failed;
+      out.diagnostic = jump ? fmt::format("{}; it followed a jump taken because {}", diagnostic, jump_reason) : diagnostic;
+      return false;
+    };
+    const bool reload = !jump && reload_lambda_ > 0.0;
+    const bool opening = !jump && !reload && o_.control == PathControl::CrackOpening && active_length() > 0.0;
     const bool zone = opening && zone_mode && select_zone();
     const Hold hold = zone ? Hold::Zone : opening ? Hold::Opening : Hold::Lambda;
     const double c0 = stage_.sys->opening_integral(d_);
@@ -577,8 +683,16 @@ CellResponse Analysis::run(const FractureObserver& observer) {
     const double l0 = lambda_;
     const Snapshot pre = snapshot();
     std::vector<CohesiveHistory> trial;
-    NewtonResult n = newton(hold, target, trial);
+    NewtonResult n;
+    if (jump) {
+      n.why = relax(o_.strain_increment * cell_.side_m, n.iterations);
+      n.ok = n.why.empty();
+      trial = flat_history();  // relax() commits its pseudo-steps
+    } else {
+      n = newton(hold, target, trial);
+    }
     auto cut = [&]() {
+      if (jump) return false;  // a jump is not cut: it is accepted as it is, or the cell fails
       d_ = d0;
       lambda_ = l0;
       if (reload) {  // below 1/64 of the unloading strain: reload by the ordinary steps instead
@@ -602,18 +716,19 @@ CellResponse Analysis::run(const FractureObserver& observer) {
         opening_failure = n.why;
         continue;
       }
-      out.status = CellStatus::Failed;
-      out.diagnostic = fmt::format("at e_bar = {:.4e}, step {}: {} (smallest step{})", l0 / cell_.side_m, step, n.why,
-                                   zone ? "; the crack-opening step before: " + opening_failure : "");
+      if (jump_or_fail(fmt::format("at e_bar = {:.4e}, step {}: {} ({}{})", l0 / cell_.side_m, step, n.why,
+                                   jump ? "the jump" : "smallest step",
+                                   zone ? "; the crack-opening step before: " + opening_failure : "")))
+        continue;
       break;
     }
     // The tension path stays at lambda >= 0 and F >= 0 (a snap-back tends to the origin); past it
     // lies a spurious branch where contact closes the cell around a still-opening process zone.
     if (!reload && (lambda_ < 0.0 || stage_.sys->reaction(d_, lambda_) < 0.0)) {
       if (cut()) continue;
-      out.status = CellStatus::Failed;
-      out.diagnostic = fmt::format("at e_bar = {:.4e}, step {}: the smallest step crosses into compression",
-                                   l0 / cell_.side_m, step);
+      if (jump_or_fail(fmt::format("at e_bar = {:.4e}, step {}: the smallest step crosses into compression",
+                                   l0 / cell_.side_m, step)))
+        continue;
       break;
     }
     // Overshoot of the growth criterion: cut, so cracks advance close to f_t.
@@ -639,8 +754,7 @@ CellResponse Analysis::run(const FractureObserver& observer) {
       // Back to the start of the step (geometry included) with a smaller step.
       restore(pre, true);
       if (cut()) continue;
-      out.status = CellStatus::Failed;
-      out.diagnostic = fmt::format("at e_bar = {:.4e}: {} (smallest step)", lambda_ / cell_.side_m, why);
+      if (jump_or_fail(fmt::format("at e_bar = {:.4e}: {} (smallest step)", lambda_ / cell_.side_m, why))) continue;
       break;
     }
     if (unloaded_) continue;  // reload (reload_lambda_), then on with the step sizes in use
@@ -652,10 +766,20 @@ CellResponse Analysis::run(const FractureObserver& observer) {
       restore_books(before);
       restore(pre, true);
       if (cut()) continue;
-      out.status = CellStatus::Failed;
-      out.diagnostic = fmt::format("at e_bar = {:.4e}, step {}: the smallest step creates energy ({:.3g} of the largest "
-                                   "work)", l0 / cell_.side_m, step, created / max_work_);
+      if (jump_or_fail(fmt::format("at e_bar = {:.4e}, step {}: the smallest step creates energy ({:.3g} of the "
+                                   "largest work)", l0 / cell_.side_m, step, created / max_work_)))
+        continue;
       break;
+    }
+    if (jump) {
+      // What the jump released: the stored and dissipated energy it lost against the work.
+      const double released = std::max(imbalance_ - imbalance(next), 0.0);
+      jump_dissipated_ += released;
+      next.jump_dissipated_J_m = jump_dissipated_;
+      ++jumps_;
+      jump_reason.clear();
+      dc = dz = o_.opening_increment;
+      zone_mode = always_zone;
     }
     imbalance_ = imbalance(next);
     emit(next);
@@ -687,6 +811,8 @@ CellResponse Analysis::run(const FractureObserver& observer) {
   out.dofs = stage_.em->dof_count();
   out.enriched_nodes = stage_.em->enriched_node.size();
   out.growth_unloads = unloads_;
+  out.jumps = jumps_;
+  out.factorizations = factorizations_;
   out.operator_energy_mismatch = operator_mismatch_;
   return out;
 }

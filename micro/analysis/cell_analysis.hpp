@@ -67,7 +67,9 @@ enum class PathControl { CrackOpening, Displacement };
 // Fail: the whole load step is undone and cut, and the cell fails at the smallest step.
 // AlwaysUnload: every growth event goes through the unloading (verification of that path: the
 // strip and one-pore tests must give the same peak, dissipation and energy balance).
-enum class GrowthFallback { UnloadAndRegrow, Fail, AlwaysUnload };
+// Relax: the tips advance at the load they grew at and the cell settles there by the relaxation of
+// JumpFallback (the crack runs: a jump at fixed strain, its released energy booked the same way).
+enum class GrowthFallback { UnloadAndRegrow, Fail, AlwaysUnload, Relax };
 // [choice] Process-zone control (crack-opening path only). The global opening integral can pass a
 // maximum when points elsewhere unload faster than the process zone opens (a snap-back shared by
 // several cracks); the opening integral over the process zone alone (the cohesive points on their
@@ -76,6 +78,16 @@ enum class GrowthFallback { UnloadAndRegrow, Fail, AlwaysUnload };
 // grows again. Off: the cell fails there. Always: every step holds the zone's opening (verification:
 // the strip tests must give the same peak, dissipation and energy balance).
 enum class ZoneControl { Fallback, Off, Always };
+// [choice] What the path does where no control it has finds a continuation at the smallest step
+// (a fold of every opening control, a Newton stall at a kink, or only equilibria that would create
+// energy): Relax (default) takes the jump a strain-controlled test takes there. The far face moves
+// by one strain_increment and the cell settles at that strain by implicit pseudo-time steps with a
+// viscous term on the crack openings (t += k_v (w - w_previous), k_v = relaxation_ratio x the
+// softening slope, so every point's law is monotone within a pseudo-step and each one is well
+// posed) until the openings stop moving and the plain residual meets the tolerance. The energy the
+// jump releases (the kinetic energy a real test would lose) is booked as CellState::jump_dissipated_J_m
+// and must not be negative. Fail: the cell fails there (the former behaviour).
+enum class JumpFallback { Relax, Fail };
 enum class TipEnrichment { Ramped };  // [choice] crack_geometry.hpp; the only one implemented
 
 struct CellAnalysisOptions {
@@ -104,6 +116,9 @@ struct CellAnalysisOptions {
   // Measured: such jumps create 2.2 x the work (5.0 mm #0), 7 % (3.0 mm #1); ordinary growth steps on
   // porous cells up to 1.6 % (the tip-ramp energy of the known tail bookkeeping defect).
   double energy_tolerance = 0.05;
+  JumpFallback jump = JumpFallback::Relax;
+  double relaxation_ratio = 2.0;         // k_v / |softening slope| of the relaxation (> 1: monotone points)
+  int max_relaxation_steps = 2000;       // pseudo-time steps of one jump
   int max_iterations = 25;               // Newton iterations per step
   int line_search_halvings = 4;          // halvings of a step that raises |r| (0: plain Newton)
   double tolerance = 1e-8;               // |r| <= tolerance x |f_unit| x lambda at first cracking

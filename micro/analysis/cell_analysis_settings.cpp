@@ -48,9 +48,10 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
   opt(c, "growth.tolerance", o.growth_tolerance, Range::positive());
   opt(c, "growth.max_per_step", o.max_growth_per_step, Range::at_least(1));
   if (c.has("growth.fallback")) {
-    const std::string f = c.choice("growth.fallback", {"unload_and_regrow", "fail", "always_unload"});
+    const std::string f = c.choice("growth.fallback", {"unload_and_regrow", "fail", "always_unload", "relax"});
     o.growth_fallback = f == "fail"            ? GrowthFallback::Fail
                         : f == "always_unload" ? GrowthFallback::AlwaysUnload
+                        : f == "relax"         ? GrowthFallback::Relax
                                                : GrowthFallback::UnloadAndRegrow;
   }
   if (c.has("path.control"))
@@ -62,6 +63,10 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
     o.zone_control = z == "off" ? ZoneControl::Off : z == "always" ? ZoneControl::Always : ZoneControl::Fallback;
   }
   opt(c, "path.energy_tolerance", o.energy_tolerance, Range::positive());
+  if (c.has("path.jump"))
+    o.jump = c.choice("path.jump", {"relax", "fail"}) == "fail" ? JumpFallback::Fail : JumpFallback::Relax;
+  opt(c, "path.relaxation_ratio", o.relaxation_ratio, Range::closed(1.1, 1e3));
+  opt(c, "path.max_relaxation_steps", o.max_relaxation_steps, Range::at_least(1));
   opt(c, "path.elastic_states", o.elastic_states, Range::at_least(1));
   opt(c, "path.opening_increment", o.opening_increment, Range::positive());
   opt(c, "path.min_opening_increment", o.min_opening_increment, Range::positive());

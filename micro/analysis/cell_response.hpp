@@ -18,6 +18,8 @@ struct CellState {
   double cohesive_energy_J_m = 0.0;  // 1/2 int_cracks t . [[u]]: recoverable by secant unloading (eq. 20)
   double dissipated_J_m = 0.0;       // cumulative energy dissipated by the cohesive cracks
   double external_work_J_m = 0.0;    // int sigma_bar l_mic d(e_bar l_mic): the work balance check
+  double jump_dissipated_J_m = 0.0;  // cumulative energy released in jumps the path could not follow
+                                     // quasi-statically (JumpFallback::Relax): work = stored + dissipated + this
   double max_opening_m = 0.0;        // largest normal opening on any crack
   std::size_t crack_segments = 0;    // segments of all crack polylines (seeds included)
   std::size_t open_segments = 0;     // segments with some opening > 0 (cohesive or traction-free)
@@ -39,6 +41,8 @@ struct CellResponse {
   std::string diagnostic;            // empty unless Failed (or a note on StepLimit)
   std::size_t nodes = 0, dofs = 0, enriched_nodes = 0;
   std::size_t growth_unloads = 0;    // growth events passed by unloading to zero (GrowthFallback)
+  std::size_t jumps = 0;             // jumps taken by relaxation (JumpFallback::Relax, GrowthFallback::Relax)
+  std::size_t factorizations = 0;    // numeric LU factorizations of the Newton matrix (the main cost)
   // Largest |operator energy - (bulk + boundary energy)| over the states, relative to the largest
   // external work so far (FractureSystem::operator_energy): 1e-2 on the elastic branch (VCI's
   // asymmetry); far above that, the cracked operator has a spurious soft mode and the path is suspect.

@@ -178,7 +178,7 @@ void FractureSystem::add_block(std::vector<double>& v, std::int32_t i, std::int3
 
 void FractureSystem::evaluate(const Eigen::VectorXd& d, double lambda, const CohesiveLaw& law,
                               const std::vector<CohesiveHistory>& committed, bool tangent, Eigen::VectorXd& residual,
-                              CohesiveEvaluation& eval) {
+                              CohesiveEvaluation& eval, const OpeningViscosity* viscosity) {
   const auto N = static_cast<Eigen::Index>(dofs());
   const Eigen::Map<const Eigen::SparseMatrix<double>> K(N, N, static_cast<Eigen::Index>(lin_.size()), col_start_.data(),
                                                         rows_.data(), lin_.data());
@@ -213,7 +213,14 @@ void FractureSystem::evaluate(const Eigen::VectorXd& d, double lambda, const Coh
     }
     eval.trial[p].sliding = wt;
     eval.trial[p].kappa = r.kappa;
-    const double tg[2] = {r.t[0] * n[0] + r.t[1] * s[0], r.t[0] * n[1] + r.t[1] * s[1]};
+    double t[2] = {r.t[0], r.t[1]};
+    const double kv = viscosity ? viscosity->stiffness_Pa_m : 0.0;
+    if (viscosity) {
+      const std::array<double, 2>& w0 = (*viscosity->reference)[p];
+      t[0] += kv * (wn - w0[0]);
+      t[1] += kv * (wt - w0[1]);
+    }
+    const double tg[2] = {t[0] * n[0] + t[1] * s[0], t[0] * n[1] + t[1] * s[1]};
     for (std::int64_t e = q.begin; e < q.end; ++e) {
       const std::int32_t g = em_.jump_node[e];
       residual[2 * g] += q.weight * em_.jump_coefficient[e] * tg[0];
@@ -229,7 +236,7 @@ void FractureSystem::evaluate(const Eigen::VectorXd& d, double lambda, const Coh
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b) {
         const double Qa[2] = {n[a], s[a]}, Qb[2] = {n[b], s[b]};
-        C[a][b] = a == b ? floor : 0.0;
+        C[a][b] = a == b ? floor + kv : 0.0;  // Q kv I Q^T = kv I
         for (int k = 0; k < 2; ++k)
           for (int l = 0; l < 2; ++l) C[a][b] += Qa[k] * r.tangent[2 * k + l] * Qb[l];
       }

@@ -30,6 +30,14 @@ struct CohesiveEvaluation {
   std::vector<std::array<double, 2>> traction;  // (t_n, t_t)
 };
 
+// A viscous term on the crack openings, t += stiffness (w - reference) per cohesive point (local
+// frame (w_n, w_t), indexed like EnrichedModel::cohesive): the implicit pseudo-time step of the
+// relaxation that carries a cell through a jump it cannot follow quasi-statically (cell_analysis.cpp).
+struct OpeningViscosity {
+  double stiffness_Pa_m = 0.0;
+  const std::vector<std::array<double, 2>>* reference = nullptr;
+};
+
 class FractureSystem {
  public:
   // `unit_problem`: the uniaxial ElasticProblem with far-face displacement 1 (uniaxial_problem with
@@ -40,10 +48,11 @@ class FractureSystem {
   std::size_t dofs() const { return static_cast<std::size_t>(f_unit_.size()); }
   const Eigen::VectorXd& unit_load() const { return f_unit_; }
 
-  // Residual (and, with `tangent`, the tangent into the internal value array) at (d, lambda).
+  // Residual (and, with `tangent`, the tangent into the internal value array) at (d, lambda), with the
+  // viscous term when `viscosity` is given (eval.traction stays the cohesive law's own).
   void evaluate(const Eigen::VectorXd& d, double lambda, const CohesiveLaw& law,
                 const std::vector<CohesiveHistory>& committed, bool tangent, Eigen::VectorXd& residual,
-                CohesiveEvaluation& eval);
+                CohesiveEvaluation& eval, const OpeningViscosity* viscosity = nullptr);
 
   // The bordered tangent [[K_T, -f_unit], [row^T, corner]] of the last evaluate(.., tangent = true).
   Eigen::SparseMatrix<double> bordered(const Eigen::VectorXd& row, double corner) const;

@@ -200,7 +200,7 @@ TEST(microCellAnalysisSettings, GrowthFallbackAndLineSearch) {
   EXPECT_EQ(o.line_search_halvings, 0);
   EXPECT_EQ(error(R"({"analysis": {"growth": {"fallback": "retry"}}})"),
             "run.json: key 'analysis.growth.fallback': value 'retry' is not one of: unload_and_regrow, fail, "
-            "always_unload");
+            "always_unload, relax");
 }
 
 TEST(microCellAnalysisSettings, ProcessZoneControlAndEnergyTolerance) {
@@ -221,6 +221,22 @@ TEST(microCellAnalysisSettings, DerivativesAndEnrichmentThreshold) {
   EXPECT_EQ(read(R"({"analysis": {"rk": {"derivatives": "implicit"}}})").rk.derivatives, rk::Derivatives::Implicit);
   EXPECT_EQ(error(R"({"analysis": {"rk": {"derivatives": "exact"}}})"),
             "run.json: key 'analysis.rk.derivatives': value 'exact' is not one of: implicit, direct");
+}
+
+TEST(microCellAnalysisSettings, JumpFallbackAndRelaxation) {
+  const CellAnalysisOptions d = read(R"({"analysis": {}})");
+  EXPECT_EQ(d.jump, JumpFallback::Relax);
+  EXPECT_DOUBLE_EQ(d.relaxation_ratio, 2.0);
+  EXPECT_EQ(d.max_relaxation_steps, 2000);
+  const CellAnalysisOptions o =
+      read(R"({"analysis": {"path": {"jump": "fail", "relaxation_ratio": 4, "max_relaxation_steps": 10}}})");
+  EXPECT_EQ(o.jump, JumpFallback::Fail);
+  EXPECT_DOUBLE_EQ(o.relaxation_ratio, 4.0);
+  EXPECT_EQ(o.max_relaxation_steps, 10);
+  EXPECT_EQ(error(R"({"analysis": {"path": {"jump": "dynamic"}}})"),
+            "run.json: key 'analysis.path.jump': value 'dynamic' is not one of: relax, fail");
+  EXPECT_EQ(error(R"({"analysis": {"path": {"relaxation_ratio": 1.0}}})"),
+            "run.json: key 'analysis.path.relaxation_ratio': value 1 is out of range, must be in [1.1, 1000]");
 }
 
 TEST(microCellAnalysisSettings, MaterialOfTable2) {

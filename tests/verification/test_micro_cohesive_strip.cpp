@@ -205,6 +205,47 @@ TEST(microCohesiveStrip, LongStripOnTheProcessZoneOpeningSnapsBackAlike) {
   check_long_strip(o);
 }
 
+// The same long strip under displacement control, which cannot follow the snap-back: at the peak
+// the path has no continuation, and the jump a strain-controlled test takes there (JumpFallback::Relax)
+// separates the strip at the peak strain (the bulk stores more than G_f L). Known answers: the
+// cohesive dissipation is G_f L, and the jump releases the rest of the energy stored at the peak,
+// 1/2 f_t^2 L^2 / E' - G_f L (0.0774 J/m against 0.280 J/m dissipated).
+TEST(microCohesiveStrip, LongStripUnderDisplacementControlJumpsToSeparation) {
+  const double L = 8e-3;
+  CellGeometry g;
+  g.side_m = L;
+  const double xc = 0.5 * L + 7.3e-6;
+  g.seeds.push_back({-1, {xc, 0.0}, {xc, L}});
+  const CellDiscretization mesh = mesh_cell(g, spacing(400e-6));
+  const CellMaterial m = table2();
+  CellAnalysisOptions o;
+  o.control = PathControl::Displacement;
+  o.min_strain_increment = 1e-8;  // the halvings before the jump are the slow part of this test
+  const CellResponse r = analyze_cell(g, mesh, m, o);
+  print(r);
+  ASSERT_EQ(r.status, CellStatus::Separated) << r.diagnostic;
+  double peak = 0.0, e_peak = 0.0;
+  for (const CellState& s : r.states)
+    if (s.sigma_bar_Pa > peak) {
+      peak = s.sigma_bar_Pa;
+      e_peak = s.strain;
+    }
+  const CellState& last = r.states.back();
+  const double E = m.elastic.plane_modulus_Pa();
+  const double released = 0.5 * m.tensile_strength_Pa * m.tensile_strength_Pa * L * L / E - m.fracture_energy_J_m2 * L;
+  std::printf("peak %.4f MPa at e %.4e, separated at e %.4e after %zu jump(s); dissipated %.5f J/m (G_f L %.5f), "
+              "released in the jump %.5f J/m (closed form %.5f)\n", peak * 1e-6, e_peak, last.strain, r.jumps,
+              last.dissipated_J_m, m.fracture_energy_J_m2 * L, last.jump_dissipated_J_m, released);
+  EXPECT_NEAR(peak / m.tensile_strength_Pa, 1.0, 0.02);
+  EXPECT_EQ(r.jumps, 1u);
+  EXPECT_NEAR(last.strain / e_peak, 1.0, 0.01);  // the jump happens at the peak strain
+  EXPECT_NEAR(last.dissipated_J_m / (m.fracture_energy_J_m2 * L), 1.0, 0.02);
+  EXPECT_NEAR(last.jump_dissipated_J_m / released, 1.0, 0.03);
+  // Without the jump the displacement control stops at the peak.
+  o.jump = JumpFallback::Fail;
+  EXPECT_EQ(analyze_cell(g, mesh, m, o).status, CellStatus::Failed);
+}
+
 // Returns the peak sigma_bar.
 double check_one_pore(const CellAnalysisOptions& o) {
   const double L = 1.2e-3, D = 0.3e-3;
