@@ -1,0 +1,223 @@
+// Speed of the elastic microcell analysis (`uhpc-micro elastic`) on one 6.5 mm cell: the shipped
+// configs (data/micro_elastic.json, its cell config data/micro_cell.json and the microstructure) with
+// cell_size_m = 6.5 mm and the seed data/micro_analysis_ensemble.json gives its first 6.5 mm cell,
+// derive_cell_seed(base_seed, size index, 0).
+//  BM_CellMesh: generate_cell + mesh_cell (gmsh), as `uhpc-micro elastic` does before the analysis.
+//  BM_RkModel: build_rk_galerkin_model (RK shape tables at the Gauss points, VCI).
+//  BM_StiffnessAssembly: assemble_elastic_system (domain stiffness, Nitsche terms, point penalty).
+//  BM_Factorization: the factorization of K that solve_sparse computes (UMFPACK LU for the
+//    unsymmetric VCI stiffness of the shipped options, CHOLMOD LLT for a symmetric one);
+//  BM_Solve: one solve with that factorization.
+//  BM_ElasticCell: uniaxial_elastic_response (model, assembly, solve, reactions and energy), i.e.
+//    `uhpc-micro elastic` without generating, meshing and writing files.
+// The settings, the cell, its mesh (generated once, outside any timed loop and any OpenMP region:
+// gmsh is global state), the model, the system and the factorization are built once, on first use,
+// and shared; nothing of it is timed except by its own benchmark. peak_rss_MiB is the process's peak
+// resident set so far (getrusage ru_maxrss), so it includes every benchmark run before it.
+// Run: `cmake --build build --target bench_micro` (3 repetitions, figures in build/bench/micro.json),
+// or build/micro/uhpc_bench_micro [--benchmark_filter=BM_ElasticCell].
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/UmfPackSupport>
+#include <nlohmann/json.hpp>
+
+#include "cell_generator.hpp"
+#include "elastic_settings.hpp"
+#include "stiffness_assembly.hpp"
+#include "uhpc/config.hpp"
+#include "uniaxial_cell.hpp"
+
+namespace {
+
+using namespace uhpc::micro;
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+constexpr double kCellSize_m = 0.0065;
+
+// The shipped elastic settings for the first 6.5 mm cell of the analysis ensemble.
+ElasticSettings load_settings() {
+  const uhpc::Config ensemble = uhpc::Config::load(UHPC_DATA_DIR "/micro_analysis_ensemble.json");
+  const std::vector<double> sizes = ensemble.numbers("cell_sizes_m");
+  std::uint64_t index = 0;
+  while (index < sizes.size() && std::abs(sizes[index] - kCellSize_m) > 1e-9) ++index;
+  if (index == sizes.size()) throw std::runtime_error("micro_analysis_ensemble.json: no 6.5 mm cell size");
+  const auto base_seed = static_cast<std::uint64_t>(ensemble.integer("base_seed"));
+  const std::uint64_t seed = derive_cell_seed(base_seed, index, 0);
+  return load_elastic_settings(UHPC_DATA_DIR "/micro_elastic.json",
+                               {"cell.cell_size_m=" + nlohmann::json(kCellSize_m).dump(),
+                                "cell.seed=" + std::to_string(seed)});
+}
+
+const ElasticSettings& settings() {
+  static const ElasticSettings s = load_settings();
+  return s;
+}
+
+const GeneratedCell& cell() {
+  static const GeneratedCell c = generate_cell(settings().cell.cell, settings().cell.seed);
+  return c;
+}
+
+const CellDiscretization& mesh() {
+  static const CellDiscretization m = mesh_cell(cell().geometry, settings().cell.mesh);
+  return m;
+}
+
+const RkGalerkinModel& model() {
+  static const RkGalerkinModel m = build_rk_galerkin_model(mesh(), settings().options.rk);
+  return m;
+}
+
+ElasticProblem problem() {
+  const ElasticSettings& s = settings();
+  return uniaxial_problem(cell().geometry.side_m, cell().geometry.load, s.options.strain, s.material,
+                          s.options.nitsche_factor);
+}
+
+// The point constraints' shape functions, as solve_elastic samples them.
+PointSet constraints(const ElasticProblem& p) {
+  std::vector<std::array<double, 2>> xs;
+  for (const PointConstraint& c : p.points) xs.push_back(c.x_m);
+  return sample_points(model(), xs);
+}
+
+const LinearSystem& linear_system() {
+  static const LinearSystem sys = [] {
+    const ElasticProblem p = problem();
+    return assemble_elastic_system(model(), p, constraints(p));
+  }();
+  return sys;
+}
+
+// The two factorizations of solve_sparse (sparse_solver.cpp).
+using Llt = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
+using Lu = Eigen::UmfPackLU<SparseMatrix>;
+
+struct Factorization {
+  std::unique_ptr<Llt> llt;
+  std::unique_ptr<Lu> lu;  // keeps a reference to linear_system().K (static: it outlives the solves)
+  bool ok() const { return llt ? llt->info() == Eigen::Success : lu->info() == Eigen::Success; }
+  Eigen::VectorXd solve(const Eigen::VectorXd& f) const { return llt ? Eigen::VectorXd(llt->solve(f)) : Eigen::VectorXd(lu->solve(f)); }
+};
+
+Factorization factorize(const LinearSystem& sys) {
+  Factorization f;
+  if (sys.symmetric)
+    f.llt = std::make_unique<Llt>(sys.K);
+  else
+    f.lu = std::make_unique<Lu>(sys.K);
+  return f;
+}
+
+double peak_rss_mib() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return -1.0;
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: KiB
+}
+
+void BM_CellMesh(benchmark::State& state) {
+  const CellSettings& s = settings().cell;
+  std::size_t nodes = 0, triangles = 0, pores = 0;
+  for (auto _ : state) {
+    const GeneratedCell c = generate_cell(s.cell, s.seed);
+    const CellDiscretization m = mesh_cell(c.geometry, s.mesh);
+    nodes = m.node_count();
+    triangles = m.triangle_count();
+    pores = c.geometry.pores.size();
+  }
+  state.SetLabel("seed " + std::to_string(s.seed));  // a counter would round it
+  state.counters["pores"] = static_cast<double>(pores);
+  state.counters["nodes"] = static_cast<double>(nodes);
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+BENCHMARK(BM_CellMesh)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+void BM_RkModel(benchmark::State& state) {
+  const CellDiscretization& m = mesh();
+  const RkGalerkinOptions& options = settings().options.rk;
+  for (auto _ : state) {
+    const RkGalerkinModel rk = build_rk_galerkin_model(m, options);
+    benchmark::DoNotOptimize(rk.vci_max_correction);
+  }
+  const RkGalerkinModel& rk = model();
+  state.counters["nodes"] = static_cast<double>(rk.node_count());
+  state.counters["domain_points"] = static_cast<double>(rk.domain.size());
+  state.counters["boundary_points"] = static_cast<double>(rk.boundary.size());
+  state.counters["shape_entries"] = static_cast<double>(rk.domain.table.support.indices.size());
+}
+BENCHMARK(BM_RkModel)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_StiffnessAssembly(benchmark::State& state) {
+  const RkGalerkinModel& rk = model();
+  const ElasticProblem p = problem();
+  const PointSet c = constraints(p);
+  for (auto _ : state) {
+    const LinearSystem sys = assemble_elastic_system(rk, p, c);
+    benchmark::DoNotOptimize(sys.K.nonZeros());
+  }
+  state.counters["dofs"] = static_cast<double>(rk.dof_count());
+  state.counters["nnz"] = static_cast<double>(linear_system().K.nonZeros());
+}
+BENCHMARK(BM_StiffnessAssembly)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Factorization(benchmark::State& state) {
+  const LinearSystem& sys = linear_system();
+  for (auto _ : state) {
+    const Factorization f = factorize(sys);
+    if (!f.ok()) {
+      state.SkipWithError("factorization failed");
+      break;
+    }
+  }
+  state.SetLabel(sys.symmetric ? "cholmod" : "umfpack");
+  state.counters["dofs"] = static_cast<double>(sys.K.rows());
+  state.counters["nnz"] = static_cast<double>(sys.K.nonZeros());
+}
+BENCHMARK(BM_Factorization)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Solve(benchmark::State& state) {
+  const LinearSystem& sys = linear_system();
+  const Factorization f = factorize(sys);
+  if (!f.ok()) {
+    state.SkipWithError("factorization failed");
+    return;
+  }
+  Eigen::VectorXd d;
+  for (auto _ : state) {
+    d = f.solve(sys.f);
+    benchmark::DoNotOptimize(d.data());
+  }
+  state.SetLabel(sys.symmetric ? "cholmod" : "umfpack");
+  state.counters["dofs"] = static_cast<double>(sys.K.rows());
+  state.counters["nnz"] = static_cast<double>(sys.K.nonZeros());
+  state.counters["rel_residual"] = (sys.K * d - sys.f).norm() / sys.f.norm();
+}
+BENCHMARK(BM_Solve)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_ElasticCell(benchmark::State& state) {
+  const ElasticSettings& s = settings();
+  const CellDiscretization& m = mesh();
+  const CellGeometry& g = cell().geometry;
+  UniaxialResult r;
+  for (auto _ : state) r = uniaxial_elastic_response(m, g.side_m, g.load, s.material, s.options);
+  state.SetLabel(r.solver);
+  state.counters["nodes"] = static_cast<double>(r.nodes);
+  state.counters["dofs"] = static_cast<double>(r.dofs);
+  state.counters["E0_bar_MPa"] = r.E0_bar_Pa * 1e-6;
+  state.counters["peak_rss_MiB"] = peak_rss_mib();
+}
+BENCHMARK(BM_ElasticCell)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
