@@ -164,12 +164,19 @@ TEST(microCohesiveStrip, GrowingAtZeroLoadGivesTheSameAnswer) {
 // exceeds G_f x crack length, so the equilibrium path snaps back (the far-face displacement must
 // decrease after the peak). The crack-opening control follows it to separation with the same
 // dissipation and energy balance as the short strip.
-void check_long_strip(const CellAnalysisOptions& o) {
-  const double L = 8e-3;
+constexpr double kLongStrip_m = 8e-3;
+
+CellGeometry long_strip() {
   CellGeometry g;
-  g.side_m = L;
-  const double xc = 0.5 * L + 7.3e-6;
-  g.seeds.push_back({-1, {xc, 0.0}, {xc, L}});
+  g.side_m = kLongStrip_m;
+  const double xc = 0.5 * kLongStrip_m + 7.3e-6;  // off the node columns
+  g.seeds.push_back({-1, {xc, 0.0}, {xc, kLongStrip_m}});
+  return g;
+}
+
+void check_long_strip(const CellAnalysisOptions& o) {
+  const double L = kLongStrip_m;
+  const CellGeometry g = long_strip();
   const CellDiscretization mesh = mesh_cell(g, spacing(400e-6));
   const CellMaterial m = table2();
   const CellResponse r = analyze_cell(g, mesh, m, o);
@@ -211,11 +218,8 @@ TEST(microCohesiveStrip, LongStripOnTheProcessZoneOpeningSnapsBackAlike) {
 // cohesive dissipation is G_f L, and the jump releases the rest of the energy stored at the peak,
 // 1/2 f_t^2 L^2 / E' - G_f L (0.0774 J/m against 0.280 J/m dissipated).
 TEST(microCohesiveStrip, LongStripUnderDisplacementControlJumpsToSeparation) {
-  const double L = 8e-3;
-  CellGeometry g;
-  g.side_m = L;
-  const double xc = 0.5 * L + 7.3e-6;
-  g.seeds.push_back({-1, {xc, 0.0}, {xc, L}});
+  const double L = kLongStrip_m;
+  const CellGeometry g = long_strip();
   const CellDiscretization mesh = mesh_cell(g, spacing(400e-6));
   const CellMaterial m = table2();
   CellAnalysisOptions o;
