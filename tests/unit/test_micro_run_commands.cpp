@@ -119,7 +119,7 @@ TEST_F(MicroRunCommands, RunWritesCurvesAndSummaryOfTheGeneratedCell) {
   EXPECT_EQ(log_.states, 111);
   ASSERT_TRUE(fs::exists(out / "cell.json"));
   const nlohmann::json s = read_json(out / "summary.json");
-  EXPECT_EQ(s["format"], "uhpc-micro-run/1");
+  EXPECT_EQ(s["format"], "uhpc-micro-run/2");
   EXPECT_EQ(s["status"], "separated");
   EXPECT_EQ(s["steps"], 110);
   EXPECT_EQ(s["cell"]["seed"], 1);  // data/micro_cell.json
@@ -135,10 +135,13 @@ TEST_F(MicroRunCommands, RunWritesCurvesAndSummaryOfTheGeneratedCell) {
   EXPECT_TRUE(s["bridging"]["within_tolerance"].get<bool>());
   EXPECT_NEAR(s["energy_balance_relative"].get<double>(), 0.0, 1e-14);
   EXPECT_EQ(s["snap_back"], false);
+  EXPECT_EQ(s["jumps"], 0);  // the bar's path needs none
+  EXPECT_EQ(s["jump_dissipated_J_m"], 0.0);
   EXPECT_EQ(s["provenance"]["program"], "uhpc-micro run");
   const H5Reader h5(out / "curves.h5");
   EXPECT_EQ(h5.units("states/sigma_bar"), "Pa");
   EXPECT_EQ(h5.units("states/bulk_energy"), "J/m");
+  EXPECT_EQ(h5.units("states/jump_dissipated"), "J/m");
   EXPECT_EQ(h5.units("states/psi_bar"), "J/m^3");
   EXPECT_EQ(h5.units("states/d_energy"), "1");
   EXPECT_EQ(h5.read_doubles("states/strain").values.size(), 111u);
