@@ -28,6 +28,21 @@ def sdel_damage(sdel: dict, size_m: float, strain) -> list:
     return [1.0 / (1.0 + c["nu"] * math.exp(-lam * c["chi"] * (e - e_i))) for e in strain]
 
 
+def draw_bands(ax, strain, mean, std, labels) -> None:
+    """One line per size (row of mean) with a +- one standard deviation band."""
+    for k, label in enumerate(labels):
+        ax.fill_between(strain * 1e3, mean[k] - std[k], mean[k] + std[k], color=f"C{k}", alpha=0.15, lw=0)
+        ax.plot(strain * 1e3, mean[k], "-", color=f"C{k}", label=label)
+
+
+def save(fig, ax, out: Path) -> None:
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    print(f"wrote {out}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("directory", type=Path)
@@ -41,35 +56,23 @@ def main() -> None:
         curves = {name: (f[f"{name}/mean"][:], f[f"{name}/std"][:]) for name in ("stress", "damage")}
         strength = f["nominal_strength"][:]
 
+    labels = [f"{size * 1e3:.1f} mm ({cells[k]} cells)" for k, size in enumerate(sizes)]
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
     mean, std = curves["stress"]
-    for k, size in enumerate(sizes):
-        label = f"{size * 1e3:.1f} mm ({cells[k]} cells, peak {strength[k] * 1e-6:.2f} MPa)"
-        ax.fill_between(strain * 1e3, (mean[k] - std[k]) * 1e-6, (mean[k] + std[k]) * 1e-6, color=f"C{k}", alpha=0.15, lw=0)
-        ax.plot(strain * 1e3, mean[k] * 1e-6, "-", color=f"C{k}", label=label)
+    peaks = [f"{label[:-1]}, peak {strength[k] * 1e-6:.2f} MPa)" for k, label in enumerate(labels)]
+    draw_bands(ax, strain, mean * 1e-6, std * 1e-6, peaks)
     ax.set(xlabel="imposed strain (1e-3)", ylabel="homogenized stress (MPa)", title="microcell ensembles (Fig. 8)")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    out = args.directory / "fig8_stress_strain.png"
-    fig.savefig(out, dpi=120)
-    print(f"wrote {out}")
+    save(fig, ax, args.directory / "fig8_stress_strain.png")
 
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
     mean, std = curves["damage"]
-    for k, size in enumerate(sizes):
-        ax.fill_between(strain * 1e3, mean[k] - std[k], mean[k] + std[k], color=f"C{k}", alpha=0.15, lw=0)
-        ax.plot(strain * 1e3, mean[k], "-", color=f"C{k}", label=f"{size * 1e3:.1f} mm ({cells[k]} cells)")
-        if sdel:
+    draw_bands(ax, strain, mean, std, labels)
+    if sdel:
+        for k, size in enumerate(sizes):
             ax.plot(strain * 1e3, sdel_damage(sdel, size, strain), "--", color=f"C{k}", lw=1)
     title = "microcell damage (Fig. 9)" + (f"; dashed: SDEL of {args.sdel.name}" if sdel else "")
     ax.set(xlabel="imposed strain (1e-3)", ylabel="damage d", title=title, ylim=(-0.02, 1.02))
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    out = args.directory / "fig9_damage.png"
-    fig.savefig(out, dpi=120)
-    print(f"wrote {out}")
+    save(fig, ax, args.directory / "fig9_damage.png")
 
 
 if __name__ == "__main__":
