@@ -98,11 +98,13 @@ class Analysis {
   static double imbalance(const CellState& s) {
     return s.bulk_energy_J_m + s.cohesive_energy_J_m + s.dissipated_J_m + s.jump_dissipated_J_m - s.external_work_J_m;
   }
-  // The energy created since the last accepted state, if beyond the tolerance (else 0).
-  double excess_energy(const CellState& s) const {
-    const double created = imbalance(s) - imbalance_;
+  // The energy created since the last accepted state, if beyond the tolerance (else 0), for a state of
+  // this imbalance.
+  double excess(double imbalance_now) const {
+    const double created = imbalance_now - imbalance_;
     return created > o_.energy_tolerance * std::max(max_work_, 1e-300) ? created : 0.0;
   }
+  double excess_energy(const CellState& s) const { return excess(imbalance(s)); }
   // stored + dissipated - work at the current state, leaving the bookkeeping as it was.
   double current_imbalance() {
     const Books b = books();
@@ -110,19 +112,17 @@ class Analysis {
     restore_books(b);
     return v;
   }
-  // The same at the current state, leaving the bookkeeping as it was.
-  double excess_energy() {
-    const Books b = books();
-    const double created = excess_energy(state(0));
-    restore_books(b);
-    return created;
-  }
+  double excess_energy() { return excess(current_imbalance()); }
   double peak_ = 0.0;  // the largest sigma_bar so far
   void note_peak(const CellState& s) { peak_ = std::max(peak_, s.sigma_bar_Pa); }
   // GrowthFallback::UnloadAndRegrow: how often, whether the last grow() unloaded, and the dissipated
   // energy at the last unload (reloading ends when a point dissipates again).
   std::size_t unloads_ = 0, jumps_ = 0;
   double jump_dissipated_ = 0.0;  // JumpFallback::Relax: energy released in jumps so far
+  void book_jump(double released) {
+    jump_dissipated_ += std::max(released, 0.0);
+    ++jumps_;
+  }
   bool unloaded_ = false, reloading_ = false;
   double reload_dissipated_ = 0.0, unload_strain_ = 0.0;
   // The first reload step is a linear one under displacement control to this lambda (halved until
@@ -429,8 +429,7 @@ std::string Analysis::grow(int& iterations) {
           restore(before, true);
           return "the relaxation after crack growth creates energy (" + unreachable(-released) + ")";
         }
-        jump_dissipated_ += std::max(released, 0.0);
-        ++jumps_;
+        book_jump(released);
         continue;
       }
       if (const double created = excess_energy(); created > 0.0) return unreachable(created);
@@ -773,10 +772,8 @@ CellResponse Analysis::run(const FractureObserver& observer) {
     }
     if (jump) {
       // What the jump released: the stored and dissipated energy it lost against the work.
-      const double released = std::max(imbalance_ - imbalance(next), 0.0);
-      jump_dissipated_ += released;
+      book_jump(imbalance_ - imbalance(next));
       next.jump_dissipated_J_m = jump_dissipated_;
-      ++jumps_;
       jump_reason.clear();
       dc = dz = o_.opening_increment;
       zone_mode = always_zone;
