@@ -173,7 +173,7 @@ nlohmann::json cell_summary_json(const CellJob& job, const CellResult& r, const 
     j["dissipated_energy_J_m"] = f.dissipated_J_m;
     j["dissipated_energy_density_J_m3"] = f.dissipated_per_area_J_m3;
     const CellState& last = resp.states.back();
-    const double stored = last.bulk_energy_J_m + last.cohesive_energy_J_m + last.dissipated_J_m + last.jump_dissipated_J_m;
+    const double stored = last.accounted_energy_J_m();
     j["external_work_J_m"] = last.external_work_J_m;
     j["jump_dissipated_J_m"] = last.jump_dissipated_J_m;
     // Work balance at the last state: external work = stored + dissipated + released in jumps (quasi-static

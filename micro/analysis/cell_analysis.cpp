@@ -96,7 +96,7 @@ class Analysis {
     operator_mismatch_ = b.operator_mismatch;
   }
   static double imbalance(const CellState& s) {
-    return s.bulk_energy_J_m + s.cohesive_energy_J_m + s.dissipated_J_m + s.jump_dissipated_J_m - s.external_work_J_m;
+    return s.accounted_energy_J_m() - s.external_work_J_m;
   }
   // The energy created since the last accepted state, if beyond the tolerance (else 0), for a state of
   // this imbalance.

@@ -24,6 +24,10 @@ struct CellState {
   std::size_t crack_segments = 0;    // segments of all crack polylines (seeds included)
   std::size_t open_segments = 0;     // segments with some opening > 0 (cohesive or traction-free)
   int newton_iterations = 0;         // iterations of the step that produced this state
+  // Stored + dissipated + released in jumps: the external work, on a path in balance.
+  double accounted_energy_J_m() const {
+    return bulk_energy_J_m + cohesive_energy_J_m + dissipated_J_m + jump_dissipated_J_m;
+  }
 };
 
 enum class CellStatus {
