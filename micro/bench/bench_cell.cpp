@@ -185,6 +185,46 @@ void BM_Factorization(benchmark::State& state) {
 }
 BENCHMARK(BM_Factorization)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// UMFPACK's fill-reducing ordering and strategy on the same matrix (the cell analysis factorizes a
+// matrix of this pattern at every Newton iteration). Args: ordering (UMFPACK_ORDERING_*), strategy.
+void BM_UmfpackOrdering(benchmark::State& state) {
+  const LinearSystem& sys = linear_system();
+  for (auto _ : state) {
+    Lu lu;
+    lu.umfpackControl()(UMFPACK_ORDERING) = static_cast<double>(state.range(0));
+    lu.umfpackControl()(UMFPACK_STRATEGY) = static_cast<double>(state.range(1));
+    lu.compute(sys.K);
+    if (lu.info() != Eigen::Success) {
+      state.SkipWithError("factorization failed");
+      break;
+    }
+  }
+}
+BENCHMARK(BM_UmfpackOrdering)
+    ->ArgNames({"ordering", "strategy"})
+    ->Args({UMFPACK_ORDERING_CHOLMOD, UMFPACK_STRATEGY_AUTO})
+    ->Args({UMFPACK_ORDERING_AMD, UMFPACK_STRATEGY_AUTO})
+    ->Args({UMFPACK_ORDERING_METIS, UMFPACK_STRATEGY_AUTO})
+    ->Args({UMFPACK_ORDERING_METIS, UMFPACK_STRATEGY_SYMMETRIC})
+    ->Args({UMFPACK_ORDERING_AMD, UMFPACK_STRATEGY_SYMMETRIC})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// What a symmetric operator would cost: CHOLMOD's supernodal LL^T of the symmetric part (K + K^T)/2
+// (the cell's K is unsymmetric through VCI's Petrov-Galerkin correction and the boundary terms).
+void BM_CholmodSymmetricPart(benchmark::State& state) {
+  const LinearSystem& sys = linear_system();
+  const SparseMatrix S = 0.5 * (SparseMatrix(sys.K.transpose()) + sys.K);
+  for (auto _ : state) {
+    Llt llt(S);
+    if (llt.info() != Eigen::Success) {
+      state.SkipWithError("factorization failed");
+      break;
+    }
+  }
+}
+BENCHMARK(BM_CholmodSymmetricPart)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void BM_Solve(benchmark::State& state) {
   const LinearSystem& sys = linear_system();
   const Factorization f = factorize(sys);
