@@ -59,9 +59,12 @@ struct CellMaterial {
 enum class PathControl { CrackOpening, Displacement };
 // [choice] What happens when a grown geometry finds no equilibrium at the load it grew at (Newton
 // cycles between the branches of the piecewise-linear cohesive law: the carried-over enrichment of
-// a moved tip ramp is a poor start). UnloadAndRegrow (default): the cell is unloaded along its
-// secants to zero (exact: every cohesive point unloads to the origin, no history changes), the tips
-// advance there, where the new segments carry no traction, and path following reloads it. Energy is
+// a moved tip ramp is a poor start), or only one that creates energy (beyond energy_tolerance: the
+// changed enriched functions under the carried-over coefficients, e.g. at a junction, start Newton
+// from another field, with spurious strain energy, and it settles on a far branch).
+// UnloadAndRegrow (default): the cell is unloaded along its secants to zero (exact: every cohesive
+// point unloads to the origin, no history changes), the tips advance there, where the new segments
+// carry no traction, and path following reloads it. Energy is
 // consistent (the unloading work is booked; growing at zero load costs nothing), and the strain-
 // controlled curve sees the reload like a snap-back excursion (energy_bridging.hpp, first passage).
 // Fail: the whole load step is undone and cut, and the cell fails at the smallest step.
