@@ -4,12 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <unordered_map>
 
 #include <Eigen/UmfPackSupport>
 #include <fmt/format.h>
 
 #include "cohesive_assembly.hpp"
+#include "field_transfer.hpp"
 #include "uniaxial_cell.hpp"
 
 namespace uhpc::micro {
@@ -20,6 +20,7 @@ namespace {
 struct Stage {
   std::unique_ptr<EnrichedModel> em;
   std::unique_ptr<FractureSystem> sys;
+  std::vector<Crack> cracks;  // what em was built on
 };
 
 // What a path step holds: the far-face displacement, the crack-opening integral over all cohesive
@@ -138,24 +139,15 @@ class Analysis {
 
   int gauss() const { return o_.enrichment.crack_points; }
 
-  void build_stage() {
+  // The enriched model and system of the current cracks; with `keep_field`, d is transferred so the
+  // displacement field stays what it was (field_transfer.hpp), else it is zero.
+  void build_stage(bool keep_field = true) {
     Stage s;
     s.em = std::make_unique<EnrichedModel>(build_enriched_model(base_, mesh_, cracks_, constraint_points_, o_.enrichment));
     s.sys = std::make_unique<FractureSystem>(base_, *s.em, unit_, far_, axis_);
-    // Carry d over: standard coefficients as they are, enriched ones by (crack, node); new ones 0.
+    s.cracks = cracks_;
     Eigen::VectorXd d = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.em->dof_count()));
-    if (stage_.em) {
-      const std::size_t n = base_.node_count();
-      d.head(static_cast<Eigen::Index>(2 * n)) = d_.head(static_cast<Eigen::Index>(2 * n));
-      std::unordered_map<std::int64_t, std::size_t> old;
-      for (std::size_t k = 0; k < stage_.em->enriched_node.size(); ++k)
-        old[static_cast<std::int64_t>(stage_.em->enriched_crack[k]) * static_cast<std::int64_t>(n) + stage_.em->enriched_node[k]] = k;
-      for (std::size_t k = 0; k < s.em->enriched_node.size(); ++k) {
-        const auto it = old.find(static_cast<std::int64_t>(s.em->enriched_crack[k]) * static_cast<std::int64_t>(n) + s.em->enriched_node[k]);
-        if (it == old.end()) continue;
-        d.segment(static_cast<Eigen::Index>(2 * (n + k)), 2) = d_.segment(static_cast<Eigen::Index>(2 * (n + it->second)), 2);
-      }
-    }
+    if (stage_.em && keep_field) d = transfer_field(base_, *stage_.em, stage_.cracks, d_, *s.em, o_.field_transfer);
     d_ = d;
     stage_ = std::move(s);
     ++stage_id_;
@@ -217,7 +209,7 @@ class Analysis {
   void restore(const Snapshot& s, bool rebuild) {
     cracks_ = s.cracks;
     history_ = s.history;
-    if (rebuild) build_stage();
+    if (rebuild) build_stage(false);
     d_ = s.d;
     lambda_ = s.lambda;
   }
@@ -402,11 +394,10 @@ std::string Analysis::grow(int& iterations) {
         iterations += n.iterations;
         commit(trial);
         // An equilibrium out of reach (one that creates energy: the held opening or displacement found
-        // a far branch) counts as none, whatever the fallback. The usual cause: build_stage carries the
-        // enriched coefficients by crack and node, but a tip that stops on another crack loses its ramp
-        // and gets the junction cut-off, and node sides flip, so Newton starts from another field with
-        // spurious strain energy (micro/README.md, growth fallback). Unloading first makes the change
-        // of functions free (d = 0); the relaxation lets the crack run instead.
+        // a far branch) counts as none, whatever the fallback. It was common while build_stage carried
+        // the enriched coefficients by crack and node (field_transfer.hpp: at a junction Newton then
+        // started from another field, with spurious strain energy); the field transfer made it rare.
+        // Unloading first makes any change of functions free (d = 0); the relaxation lets the crack run.
         if (const double created = excess_energy(); created > 0.0) {
           ok = false;
           why = unreachable(created);

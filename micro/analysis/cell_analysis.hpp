@@ -44,6 +44,7 @@
 #include "cohesive_law.hpp"
 #include "crack_growth.hpp"
 #include "enrichment.hpp"
+#include "field_transfer.hpp"
 #include "plane_strain.hpp"
 #include "rk_galerkin_model.hpp"
 
@@ -58,10 +59,10 @@ struct CellMaterial {
 
 enum class PathControl { CrackOpening, Displacement };
 // [choice] What happens when a grown geometry finds no equilibrium at the load it grew at (Newton
-// cycles between the branches of the piecewise-linear cohesive law: the carried-over enrichment of
-// a moved tip ramp is a poor start), or only one that creates energy (beyond energy_tolerance: the
-// changed enriched functions under the carried-over coefficients, e.g. at a junction, start Newton
-// from another field, with spurious strain energy, and it settles on a far branch).
+// cycles between the branches of the piecewise-linear cohesive law), or only one that creates energy
+// (beyond energy_tolerance: Newton settles on a far branch; common before the field transfer of
+// field_transfer.hpp, when the changed enriched functions under carried-over coefficients started it
+// from another field).
 // UnloadAndRegrow (default): the cell is unloaded along its secants to zero (exact: every cohesive
 // point unloads to the origin, no history changes), the tips advance there, where the new segments
 // carry no traction, and path following reloads it. Energy is
@@ -102,6 +103,7 @@ struct CellAnalysisOptions {
   double growth_tolerance = 0.02;  // a step whose tip criterion exceeds f_t (1 + this) is cut
   int max_growth_per_step = 400;   // tip advances per load step (re-equilibrated after each round)
   GrowthFallback growth_fallback = GrowthFallback::UnloadAndRegrow;
+  FieldTransfer field_transfer = FieldTransfer::Project;  // d across a rebuild (field_transfer.hpp)
   double activation_ratio = 1e-3;  // cohesive law, cohesive_law.hpp
   double contact_penalty_ratio = 1.0;
   CohesiveMode mode = CohesiveMode::ModeI;

@@ -54,6 +54,9 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
                         : f == "relax"         ? GrowthFallback::Relax
                                                : GrowthFallback::UnloadAndRegrow;
   }
+  if (c.has("growth.field_transfer"))
+    o.field_transfer = c.choice("growth.field_transfer", {"project", "carry"}) == "carry" ? FieldTransfer::Carry
+                                                                                         : FieldTransfer::Project;
   if (c.has("path.control"))
     o.control = c.choice("path.control", {"crack_opening", "displacement"}) == "displacement"
                     ? PathControl::Displacement

@@ -43,9 +43,11 @@ struct Builder {
   std::vector<double> node_side;                    // per gnode k: H_c(x_J)
   CrackCache cache;
 
-  // Appends the row of point x (standard entries [b, e) of table t); test gradients = trial ones here,
-  // the VCI correction is added once the whole table is known (apply_vci).
-  void row(GeneralTable& out, const double* x, const rk::ShapeTable& t, std::int64_t b, std::int64_t e) {
+  // Appends the row of point x (standard entries [b, e) of table t: an rk::ShapeTable, or the standard
+  // part of a GeneralTable row); test gradients = trial ones here, the VCI correction is added once the
+  // whole table is known (apply_vci).
+  template <class Table>
+  void row(GeneralTable& out, const double* x, const Table& t, std::int64_t b, std::int64_t e) {
     ++cache.now;
     for (std::int64_t k = b; k < e; ++k) {
       out.support.indices.push_back(t.support.indices[k]);
@@ -292,17 +294,52 @@ EnrichedModel build_enriched_model(const RkGalerkinModel& base, const CellDiscre
   return em;
 }
 
-GeneralTable enriched_table_at(const RkGalerkinModel& base, const EnrichedModel& em, const std::vector<Crack>& cracks,
-                               const std::vector<double>& points) {
+namespace {
+
+// A Builder for the enriched functions of an existing model.
+Builder builder_of(const RkGalerkinModel& base, const EnrichedModel& em, const std::vector<Crack>& cracks) {
   std::vector<std::pair<std::int32_t, std::int32_t>> set;
   for (std::size_t k = 0; k < em.enriched_node.size(); ++k) set.emplace_back(em.enriched_crack[k], em.enriched_node[k]);
   Builder b{cracks, base.node_count(), {}, {}, CrackCache(cracks.size())};
   setup(b, base, set);
+  return b;
+}
+
+}  // namespace
+
+GeneralTable enriched_table_at(const RkGalerkinModel& base, const EnrichedModel& em, const std::vector<Crack>& cracks,
+                               const std::vector<double>& points) {
+  Builder b = builder_of(base, em, cracks);
   const PointSet ps = sample_flat(base, points);
   GeneralTable out;
   for (std::size_t p = 0; p < ps.size(); ++p)
     b.row(out, &ps.x[2 * p], ps.table, ps.table.support.begin(p), ps.table.support.end(p));
   return out;
+}
+
+std::vector<double> enriched_displacement(const RkGalerkinModel& base, const EnrichedModel& em,
+                                          const std::vector<Crack>& cracks, const GeneralTable& rows,
+                                          const std::vector<double>& x, const Eigen::VectorXd& d) {
+  const auto n = static_cast<std::int32_t>(base.node_count());
+  Builder b = builder_of(base, em, cracks);
+  std::vector<double> u(2 * rows.size(), 0.0);
+  GeneralTable scratch;
+  for (std::size_t p = 0; p < rows.size(); ++p) {
+    std::int64_t e = rows.support.begin(p);
+    while (e < rows.support.end(p) && rows.support.indices[static_cast<std::size_t>(e)] < n) ++e;
+    scratch.support.offsets.assign(1, 0);
+    scratch.support.indices.clear();
+    scratch.psi.clear();
+    scratch.grad.clear();
+    scratch.test_grad.clear();
+    b.row(scratch, &x[2 * p], rows, rows.support.begin(p), e);
+    for (std::size_t k = 0; k < scratch.support.indices.size(); ++k) {
+      const std::int32_t g = scratch.support.indices[k];
+      u[2 * p] += scratch.psi[k] * d[2 * g];
+      u[2 * p + 1] += scratch.psi[k] * d[2 * g + 1];
+    }
+  }
+  return u;
 }
 
 }  // namespace uhpc::micro

@@ -22,6 +22,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "cell_mesh.hpp"
 #include "crack_geometry.hpp"
 #include "rk_galerkin_model.hpp"
@@ -85,5 +87,12 @@ EnrichedModel build_enriched_model(const RkGalerkinModel& base, const CellDiscre
 // Enriched shape functions at arbitrary points (stress sampling); test_grad = grad.
 GeneralTable enriched_table_at(const RkGalerkinModel& base, const EnrichedModel& em, const std::vector<Crack>& cracks,
                                const std::vector<double>& points);
+
+// The displacement (2 per point) of the coefficients d of model em (built on `cracks`) at the points x of
+// `rows`, a GeneralTable on the same base model but possibly another crack geometry: only the
+// standard entries of its rows are used, em's enrichment is evaluated anew (field_transfer.hpp).
+std::vector<double> enriched_displacement(const RkGalerkinModel& base, const EnrichedModel& em,
+                                          const std::vector<Crack>& cracks, const GeneralTable& rows,
+                                          const std::vector<double>& x, const Eigen::VectorXd& d);
 
 }  // namespace uhpc::micro
