@@ -136,6 +136,8 @@ class Analysis {
   long zone_id_ = 0;
   // Selects the zone at the current state; false when no point is on its softening envelope.
   bool select_zone();
+  // Selects the cohesive points of the segments active in `before` (growth re-equilibration).
+  bool select_old_segments(const std::vector<Crack>& before);
 
   int gauss() const { return o_.enrichment.crack_points; }
 
@@ -376,15 +378,19 @@ std::string Analysis::grow(int& iterations) {
       build_stage();
       // Re-equilibrate the new geometry: at the same far-face displacement while nothing softens (the
       // new segments sit on their stiff activation branch), at the same crack opening afterwards (on
-      // the softening branch a fixed displacement may have no nearby equilibrium).
-      const bool opening = o_.control == PathControl::CrackOpening && softening();
-      const Hold hold = opening ? Hold::Opening : Hold::Lambda;
-      const double target = opening ? stage_.sys->opening_integral(d_) : lambda_;
+      // the softening branch a fixed displacement may have no nearby equilibrium). The opening held is
+      // that of the segments there were before (a Hold::Zone of them): the transferred field has no
+      // jump on the new ones, which need their activation opening to carry f_t, and holding the total
+      // would close the old ones to make room, unloading the cell while openings are of the order of
+      // the activation opening (the 8 mm strip fell back to the elastic line, e = 2.9e-4 < w_c/L).
+      const bool opening = o_.control == PathControl::CrackOpening && softening() && select_old_segments(before.cracks);
+      const Hold hold = opening ? Hold::Zone : Hold::Lambda;
+      const double target = opening ? stage_.sys->opening_gradient(zone_).dot(d_) : lambda_;
       const Eigen::VectorXd d0 = d_;
       const double l0 = lambda_;
       std::vector<CohesiveHistory> trial;
       NewtonResult n = newton(hold, target, trial);
-      if (!n.ok && hold == Hold::Opening) {
+      if (!n.ok && hold == Hold::Zone) {
         d_ = d0;
         lambda_ = l0;
         n = newton(Hold::Lambda, l0, trial);
@@ -512,6 +518,20 @@ void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const s
   reloading_ = true;
   reload_dissipated_ = dissipated(flat_history());
   reload_lambda_ = unload_strain_ * cell_.side_m;
+}
+
+bool Analysis::select_old_segments(const std::vector<Crack>& before) {
+  zone_.assign(stage_.em->cohesive.size(), 0);
+  zone_length_ = 0.0;
+  for (std::size_t p = 0; p < zone_.size(); ++p) {
+    const CohesivePoint& q = stage_.em->cohesive[p];
+    if (static_cast<std::size_t>(q.segment) < before[static_cast<std::size_t>(q.crack)].active) {
+      zone_[p] = 1;
+      zone_length_ += q.weight;
+    }
+  }
+  ++zone_id_;
+  return zone_length_ > 0.0;
 }
 
 bool Analysis::select_zone() {

@@ -200,6 +200,11 @@ void check_long_strip(const CellAnalysisOptions& o) {
               m.fracture_energy_J_m2 * L, worst);
   EXPECT_NEAR(peak / m.tensile_strength_Pa, 1.0, 0.02);
   EXPECT_LT(e_min_after, 0.8 * e_peak);  // snap-back: the imposed strain falls after the peak
+  // ... but not below the end of the branch, e = sigma/E0_bar + w/L -> w_c/L at separation (linear
+  // softening, w_c = 2 G_f/f_t). A growth step that held the total opening once took the path back to
+  // the elastic line, 0.75 w_c/L (cell_analysis.cpp, grow()).
+  const double w_c = 2.0 * m.fracture_energy_J_m2 / m.tensile_strength_Pa;
+  EXPECT_GT(e_min_after, 0.98 * w_c / L);
   EXPECT_NEAR(last.dissipated_J_m / (m.fracture_energy_J_m2 * L), 1.0, 0.02);
   EXPECT_LT(worst, 0.01);
 }
