@@ -378,19 +378,19 @@ std::string Analysis::grow(int& iterations) {
       build_stage();
       // Re-equilibrate the new geometry: at the same far-face displacement while nothing softens (the
       // new segments sit on their stiff activation branch), at the same crack opening afterwards (on
-      // the softening branch a fixed displacement may have no nearby equilibrium). The opening held is
-      // that of the segments there were before (a Hold::Zone of them): the transferred field has no
-      // jump on the new ones, which need their activation opening to carry f_t, and holding the total
-      // would close the old ones to make room, unloading the cell while openings are of the order of
-      // the activation opening (the 8 mm strip fell back to the elastic line, e = 2.9e-4 < w_c/L).
-      const bool opening = o_.control == PathControl::CrackOpening && softening() && select_old_segments(before.cracks);
-      const Hold hold = opening ? Hold::Zone : Hold::Lambda;
-      const double target = opening ? stage_.sys->opening_gradient(zone_).dot(d_) : lambda_;
+      // the softening branch a fixed displacement may have no nearby equilibrium): by default that of
+      // the segments there were before, as a Hold::Zone of them (GrowthHold, cell_analysis.hpp).
+      const bool opening = o_.control == PathControl::CrackOpening && softening();
+      const bool old_only = opening && o_.growth_hold == GrowthHold::OldSegments && select_old_segments(before.cracks);
+      const Hold hold = old_only ? Hold::Zone : opening ? Hold::Opening : Hold::Lambda;
+      const double target = old_only  ? stage_.sys->opening_gradient(zone_).dot(d_)
+                            : opening ? stage_.sys->opening_integral(d_)
+                                      : lambda_;
       const Eigen::VectorXd d0 = d_;
       const double l0 = lambda_;
       std::vector<CohesiveHistory> trial;
       NewtonResult n = newton(hold, target, trial);
-      if (!n.ok && hold == Hold::Zone) {
+      if (!n.ok && hold != Hold::Lambda) {
         d_ = d0;
         lambda_ = l0;
         n = newton(Hold::Lambda, l0, trial);

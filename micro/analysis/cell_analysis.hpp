@@ -82,6 +82,14 @@ enum class GrowthFallback { UnloadAndRegrow, Fail, AlwaysUnload, Relax };
 // grows again. Off: the cell fails there. Always: every step holds the zone's opening (verification:
 // the strip tests must give the same peak, dissipation and energy balance).
 enum class ZoneControl { Fallback, Off, Always };
+// [choice] What the re-equilibration after crack growth holds once a crack softens (crack-opening
+// path; before, and under displacement control, it holds lambda). OldSegments (default): the opening
+// of the segments there were before the growth, the new ones open as equilibrium needs (they start
+// with no jump and need their activation opening to carry f_t). TotalOpening: the opening integral
+// over every segment, new ones included, the former rule; it closes the old segments to make room
+// while openings are of the order of the activation opening (the 8 mm snap-back strip fell back to
+// the elastic line, e = 2.9e-4 < w_c/L = 3.86e-4).
+enum class GrowthHold { OldSegments, TotalOpening };
 // [choice] What the path does where no control it has finds a continuation at the smallest step
 // (a fold of every opening control, a Newton stall at a kink, or only equilibria that would create
 // energy): Relax (default) takes the jump a strain-controlled test takes there. The far face moves
@@ -104,6 +112,7 @@ struct CellAnalysisOptions {
   int max_growth_per_step = 400;   // tip advances per load step (re-equilibrated after each round)
   GrowthFallback growth_fallback = GrowthFallback::UnloadAndRegrow;
   FieldTransfer field_transfer = FieldTransfer::Project;  // d across a rebuild (field_transfer.hpp)
+  GrowthHold growth_hold = GrowthHold::OldSegments;
   double activation_ratio = 1e-3;  // cohesive law, cohesive_law.hpp
   double contact_penalty_ratio = 1.0;
   CohesiveMode mode = CohesiveMode::ModeI;

@@ -57,6 +57,10 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
   if (c.has("growth.field_transfer"))
     o.field_transfer = c.choice("growth.field_transfer", {"project", "carry"}) == "carry" ? FieldTransfer::Carry
                                                                                          : FieldTransfer::Project;
+  if (c.has("growth.hold"))
+    o.growth_hold = c.choice("growth.hold", {"old_segments", "total_opening"}) == "total_opening"
+                        ? GrowthHold::TotalOpening
+                        : GrowthHold::OldSegments;
   if (c.has("path.control"))
     o.control = c.choice("path.control", {"crack_opening", "displacement"}) == "displacement"
                     ? PathControl::Displacement
