@@ -80,6 +80,8 @@ SolverOptions read_solver(const Config& c) {
   o.max_step_repeats = static_cast<int>(c.integer("max_step_repeats", Range::closed(0, 100)));
   o.energy_error_limit = c.number("energy_error_limit", Range::non_negative());
   o.domain_margin = c.number("domain_margin", Range::positive());
+  // The skin of the neighbour search stays at its default; the lazy rows need tolerance < skin / 2.
+  o.shape_reuse_tolerance = c.number("shape_reuse_tolerance", Range{0.0, 0.5 * o.neighbour_skin, false, true});
   return o;
 }
 

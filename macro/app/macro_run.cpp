@@ -47,6 +47,11 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
       {"field_outputs", field_steps},
       {"wall_time_s", wall_s},
       {"particle_steps_per_s", wall_s > 0 ? static_cast<double>(s.particles().n) * static_cast<double>(s.steps()) / wall_s : 0.0},
+      // Lazy RK rows (solver.shape_reuse_tolerance): the fraction of rows kept over the run (0 without).
+      {"shape_rows_kept_fraction",
+       s.shapes().rows_kept + s.shapes().rows_built > 0
+           ? static_cast<double>(s.shapes().rows_kept) / static_cast<double>(s.shapes().rows_kept + s.shapes().rows_built)
+           : 0.0},
       {"energy",
        {{"initial_kinetic_J", s.ledger().kinetic_initial},
         {"final_kinetic_J", s.ledger().kinetic},

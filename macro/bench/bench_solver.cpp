@@ -6,14 +6,16 @@
 //    3.0 mm at the axis growing to 4.5 mm at the rim: 79 957 particles; elastic stand-in with the AFC
 //    moduli) hit by the paper's sphere (9.071 g, 6.35 mm) at 817 m/s, already touching the entry face.
 //    Arguments: threads, support factor x 10 (20: 2.0 h, 25: 2.5 h), NSNI (0/1), strain configuration
-//    (as above). Fixed 8 steps per configuration: the eight of the product with midpoint strain (about
+//    (as above), lazy-row tolerance x 1e4 (0: off). Fixed 8 steps per configuration: the eight of the product with midpoint strain (about
 //    a minute on this machine; comparable with the earlier figures), and end / endpoint average at
 //    2.5 h with NSNI; the three strain configurations of the shipped setting alone:
 //    --benchmark_filter='PaperDisc/.*/support_x10:25/nsni:1/'.
 //  BM_PaperDisc100: the figure, the same disc in the shipped configuration (2.5 h, NSNI,
-//    endpoint-average strain) over 100 steps, on 1 and 2 threads (a few minutes; compared with LAMMPS
-//    by pipelines/bench_ratio.py).
-//  Counters of both: particles, searches/reuses (RK rebuilds in the timed steps that searched the
+//    endpoint-average strain) over 100 steps, on 1 and 2 threads, every RK row rebuilt every step
+//    (reuse_e4 0) and with the shipped lazy rows (reuse_e4 3: shape_reuse_tolerance 3e-4) (a few
+//    minutes; compared with LAMMPS by pipelines/bench_ratio.py). The disc starts at rest, so lazy rows
+//    keep most rows here: a whole shot gains less (macro/README.md, Speed).
+//  Counters of both: particles, rows_built (the fraction of RK rows rebuilt), searches/reuses (RK rebuilds in the timed steps that searched the
 //    neighbours afresh / reused the Verlet candidates), in_contact, peak_rss_MiB. peak_rss_MiB is the
 //    process's peak resident set so far (getrusage ru_maxrss after the timed steps), not the
 //    configuration's own: it includes every benchmark run before it, so for a clean figure run one
@@ -88,6 +90,7 @@ void BM_PaperDisc(benchmark::State& state) {
   options.support_factor = 0.1 * static_cast<double>(state.range(1));
   options.stabilization = state.range(2) == 0 ? Stabilization::None : Stabilization::Nsni;
   options.strain_configuration = strain_configuration(state.range(3));
+  options.shape_reuse_tolerance = 1e-4 * static_cast<double>(state.range(4));
   DiscSpec spec;
   spec.radius_m = 0.2032;
   spec.thickness_m = 0.03175;
@@ -107,34 +110,42 @@ void BM_PaperDisc(benchmark::State& state) {
   solver->initialize();
   for (int s = 0; s < 2; ++s) solver->step();  // buffers settle
   const std::size_t searches0 = solver->shapes().searches, reuses0 = solver->shapes().reuses;
+  const std::size_t built0 = solver->shapes().rows_built, kept0 = solver->shapes().rows_kept;
   for (auto _ : state)
     if (!solver->step()) state.SkipWithError("step failed");
   state.counters["peak_rss_MiB"] = peak_rss_mib();
   // RK rebuilds in the timed steps that searched the neighbours afresh / reused the Verlet candidates.
   state.counters["searches"] = static_cast<double>(solver->shapes().searches - searches0);
   state.counters["reuses"] = static_cast<double>(solver->shapes().reuses - reuses0);
+  // Lazy rows: the fraction of RK rows rebuilt in the timed steps (1 without).
+  const double built = static_cast<double>(solver->shapes().rows_built - built0),
+               kept = static_cast<double>(solver->shapes().rows_kept - kept0);
+  state.counters["rows_built"] = built + kept > 0 ? built / (built + kept) : 1.0;
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(body.size()));
   state.counters["particles"] = static_cast<double>(body.size());
   state.counters["in_contact"] = static_cast<double>(solver->contact().particles_in_contact);
 }
 
 BENCHMARK(BM_PaperDisc)
-    ->ArgNames({"threads", "support_x10", "nsni", "strain"})
-    ->ArgsProduct({{1, 2}, {20, 25}, {0, 1}, {0}})
-    ->Args({1, 25, 1, 1})
-    ->Args({2, 25, 1, 1})
-    ->Args({1, 25, 1, 2})
-    ->Args({2, 25, 1, 2})
+    ->ArgNames({"threads", "support_x10", "nsni", "strain", "reuse_e4"})
+    ->ArgsProduct({{1, 2}, {20, 25}, {0, 1}, {0}, {0}})
+    ->Args({1, 25, 1, 1, 0})
+    ->Args({2, 25, 1, 1, 0})
+    ->Args({1, 25, 1, 2, 0})
+    ->Args({2, 25, 1, 2, 0})
     ->Iterations(8)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// The figure: shipped configuration (2.5 h, NSNI, endpoint-average strain), 100 steps.
+// The figure: shipped configuration (2.5 h, NSNI, endpoint-average strain), 100 steps, without
+// and with the shipped lazy rows.
 BENCHMARK(BM_PaperDisc)
     ->Name("BM_PaperDisc100")
-    ->ArgNames({"threads", "support_x10", "nsni", "strain"})
-    ->Args({1, 25, 1, 2})
-    ->Args({2, 25, 1, 2})
+    ->ArgNames({"threads", "support_x10", "nsni", "strain", "reuse_e4"})
+    ->Args({1, 25, 1, 2, 0})
+    ->Args({2, 25, 1, 2, 0})
+    ->Args({1, 25, 1, 2, 3})
+    ->Args({2, 25, 1, 2, 3})
     ->Iterations(100)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

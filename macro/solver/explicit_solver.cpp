@@ -19,9 +19,12 @@ namespace {
 // four passes over the stored table. The same values, bitwise, as those passes: every particle sees
 // the same sums, and the static schedule gives each thread's force buffer the rows and the stress
 // sums the terms in the order of InternalForce::compute and update_stresses.
+// With L_start (EndpointAverage) and !start_done, the start-of-step gradients come from the old rows
+// still in place (lazy rows, ShapeCache::prepare): a due row's are read before its rebuild, and a
+// kept row has the same gradients at both ends (its L is already the average).
 template <class Block>
 StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& force, Block& block, Particles& p,
-                                          const double* L_start, const double* G_start, double dt,
+                                          const double* L_start, const double* G_start, bool start_done, double dt,
                                           const BulkViscosity& viscosity) {
   const std::int64_t n = static_cast<std::int64_t>(p.n);
   const bool nsni = shapes.has_second_gradients() && !p.stress_grad.empty();
@@ -34,16 +37,29 @@ StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& for
     StressUpdateSums sums;
 #pragma omp for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {
+      const double *Ls = nullptr, *Gs = nullptr;
+      double L_old[9], G_old[27];
+      if (L_start && start_done) {
+        Ls = L_start + 9 * i;
+        Gs = G_start ? G_start + 27 * i : nullptr;
+      } else if (L_start && !shapes.row_kept(i)) {
+        const std::int64_t b = shapes.row_begin(i);
+        point_velocity_gradients(shapes.row_nodes(i), shapes.row_size(i), shapes.grad.data() + 3 * b,
+                                 G_start ? shapes.hess.data() + 6 * b : nullptr, p.v.data(), i, L_old,
+                                 G_start ? G_old : nullptr);
+        Ls = L_old;
+        Gs = G_start ? G_old : nullptr;
+      }
       shapes.build_row(i, scratch);
-      const std::int64_t b = shapes.support.begin(i);
+      const std::int64_t b = shapes.row_begin(i);
       double* L = p.vel_grad.data() + 9 * i;
       double* G = nsni ? p.vel_grad_grad.data() + 27 * i : nullptr;
-      point_velocity_gradients(shapes.support.row(i), shapes.support.count(i), shapes.grad.data() + 3 * b,
+      point_velocity_gradients(shapes.row_nodes(i), shapes.row_size(i), shapes.grad.data() + 3 * b,
                                nsni ? shapes.hess.data() + 6 * b : nullptr, p.v.data(), i, L, G);
-      if (L_start) {
-        for (int m = 0; m < 9; ++m) L[m] = 0.5 * (L_start[9 * i + m] + L[m]);
-        if (G)
-          for (int m = 0; m < 27; ++m) G[m] = 0.5 * (G_start[27 * i + m] + G[m]);
+      if (Ls) {
+        for (int m = 0; m < 9; ++m) L[m] = 0.5 * (Ls[m] + L[m]);
+        if (G && Gs)
+          for (int m = 0; m < 27; ++m) G[m] = 0.5 * (Gs[m] + G[m]);
       }
       update_stress(block, p, i, dt, viscosity, sums);
       InternalForce::add_row(shapes, i, p.stress.data(), p.bulk_q.data(), p.volume.data(),
@@ -70,7 +86,11 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
   if (!(options_.energy_error_limit >= 0)) throw std::invalid_argument("ExplicitSolver: energy_error_limit must be >= 0");
   if (!(options_.domain_margin > 0)) throw std::invalid_argument("ExplicitSolver: domain_margin must be > 0");
   if (!(options_.neighbour_skin >= 0)) throw std::invalid_argument("ExplicitSolver: neighbour_skin must be >= 0");
+  if (!(options_.shape_reuse_tolerance >= 0 && options_.shape_reuse_tolerance < 0.5 * options_.neighbour_skin) &&
+      options_.shape_reuse_tolerance != 0)
+    throw std::invalid_argument("ExplicitSolver: shape_reuse_tolerance must be 0 or in (0, neighbour_skin / 2)");
   shapes_.skin = options_.neighbour_skin;
+  shapes_.reuse_tolerance = options_.shape_reuse_tolerance;
   shapes_.keep_psi = false;  // the step reads only the gradients
   f_ext_old_.assign(3 * p_.n, 0.0);
   f_contact_old_.assign(3 * p_.n, 0.0);
@@ -186,7 +206,6 @@ void ExplicitSolver::compute_accelerations(double dt) {
     // attempt's in shapes_ (x_prev is the restored x). The velocity gradient reads only the stored
     // lists and values, not the positions, so the drift above does not disturb them.
     if (!shapes_at_x_) rebuild_shapes(p_.x_prev.data());
-    velocity_gradients(vel_grad_start_.data(), nsni ? vel_grad_grad_start_.data() : nullptr);
   }
   const double* x_strain = p_.x.data();
   if (config == StrainConfiguration::Midpoint) {
@@ -202,13 +221,17 @@ void ExplicitSolver::compute_accelerations(double dt) {
     shapes_at_x_ = false;
     sums = std::visit([&](auto& block) { return update_stresses(block, p_, dt, options_.viscosity); }, material_);
   } else {
-    shapes_.prepare(options_.rk, x_strain, p_.support.data(), p_.n, second_options());
-    shapes_at_x_ = true;
     const bool average = config == StrainConfiguration::EndpointAverage;
+    // EndpointAverage: the x_n gradients of the rows before prepare replaces them (all of them here,
+    // or row by row inside the loop below when lazy rows keep the old ones in place).
+    const RowVelocityGradients start{p_.v.data(), vel_grad_start_.data(), nsni ? vel_grad_grad_start_.data() : nullptr};
+    const bool start_done =
+        shapes_.prepare(options_.rk, x_strain, p_.support.data(), p_.n, second_options(), average ? &start : nullptr);
+    shapes_at_x_ = true;
     sums = std::visit(
         [&](auto& block) {
           return rows_stresses_and_forces(shapes_, force_, block, p_, average ? vel_grad_start_.data() : nullptr,
-                                          average && nsni ? vel_grad_grad_start_.data() : nullptr, dt,
+                                          average && nsni ? vel_grad_grad_start_.data() : nullptr, start_done, dt,
                                           options_.viscosity);
         },
         material_);

@@ -66,6 +66,11 @@ struct SolverOptions {
   // candidate lists are searched with the radii grown by it and reused, filtered exactly, until some
   // particle has moved half the skin. Exact (the lists equal a fresh search); 0: search every rebuild.
   double neighbour_skin = 0.2;
+  // Lazy RK rows (ShapeCache::reuse_tolerance; needs neighbour_skin > 0): a particle's shape functions
+  // are rebuilt only once a neighbour has moved relative to it by more than this fraction of its
+  // support radius since they were built (or the candidates were searched again); otherwise they are
+  // kept. 0: every row is rebuilt at every configuration (the semi-Lagrangian method as such).
+  double shape_reuse_tolerance = 0.0;
   // Step-collapse guard: repeat a step whose new stable step is below this fraction of the step taken
   // (0 switches the guard off; so does fixed_dt_s). With CFL 0.4 and 0.5 an accepted step was at most
   // 0.8 of the critical step of the configuration it produced.

@@ -41,8 +41,8 @@ void InternalForce::add_row(const ShapeCache& shapes, std::int64_t L, const doub
   const double q = bulk_q ? bulk_q[L] : 0.0;
   for (int m = 0; m < 9; ++m) s[m] = volume[L] * stress[9 * L + m];
   for (int d = 0; d < 3; ++d) s[4 * d] -= volume[L] * q;
-  const std::int32_t* row = shapes.support.row(L);
-  const std::int64_t b = shapes.support.begin(L), count = shapes.support.count(L);
+  const std::int32_t* row = shapes.row_nodes(L);
+  const std::int64_t b = shapes.row_begin(L), count = shapes.row_size(L);
   if (!stress_grad) {
     for (std::int64_t k = 0; k < count; ++k) {
       const double* dpsi = shapes.grad.data() + 3 * (b + k);

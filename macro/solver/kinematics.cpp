@@ -12,8 +12,8 @@ void gradients_of_rows(const ShapeCache& shapes, const double* v, std::size_t n,
   const double* hess = G ? shapes.hess.data() : nullptr;
 #pragma omp parallel for schedule(static) if (nn >= kParallelMinParticles)
   for (std::int64_t i = 0; i < nn; ++i) {
-    const std::int64_t b = shapes.support.begin(i);
-    point_velocity_gradients(shapes.support.row(i), shapes.support.count(i), shapes.grad.data() + 3 * b,
+    const std::int64_t b = shapes.row_begin(i);
+    point_velocity_gradients(shapes.row_nodes(i), shapes.row_size(i), shapes.grad.data() + 3 * b,
                              hess ? hess + 6 * b : nullptr, v, i, L ? L + 9 * i : nullptr, G ? G + 27 * i : nullptr);
   }
 }

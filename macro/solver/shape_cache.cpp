@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 
 namespace uhpc::macro {
 
@@ -29,9 +30,9 @@ void ShapeCache::rebuild(const rk::Options& options, const double* x, const doub
     for (std::int64_t p = 0; p < nq; ++p) {
       build_row(p, scratch);
       if (gradients) {
-        const std::int64_t b = support.begin(p);
+        const std::int64_t b = row_begin(p);
         const bool with_g = second && gradients->G;
-        point_velocity_gradients(support.row(p), support.count(p), grad.data() + 3 * b,
+        point_velocity_gradients(row_nodes(p), row_size(p), grad.data() + 3 * b,
                                  with_g ? hess.data() + 6 * b : nullptr, gradients->v, p, gradients->L + 9 * p,
                                  with_g ? gradients->G + 27 * p : nullptr);
       }
@@ -39,23 +40,79 @@ void ShapeCache::rebuild(const rk::Options& options, const double* x, const doub
   }
 }
 
-void ShapeCache::prepare(const rk::Options& options, const double* x, const double* support_radius, std::size_t n,
-                         const SecondGradientOptions* second) {
-  if (skin > 0.0) {
-    find_with_skin(x, support_radius, n);
+bool ShapeCache::prepare(const rk::Options& options, const double* x, const double* support_radius, std::size_t n,
+                         const SecondGradientOptions* second, const RowVelocityGradients* old_rows) {
+  std::size_t entries = 0;
+  bool old_rows_done = false;
+  auto gradients_of_old_rows = [&]() {
+    if (!old_rows || old_rows_done) return;
+    if ((lazy() ? lazy_size_.size() : support.size()) != n)
+      throw std::logic_error("ShapeCache::prepare: old_rows needs the rows of an earlier prepare");
+    velocity_gradients(*this, old_rows->v, n, old_rows->L, has_second_gradients() ? old_rows->G : nullptr);
+    old_rows_done = true;
+  };
+  if (lazy()) {
+    if (!(skin > 0.0)) throw std::invalid_argument("ShapeCache: lazy rows (reuse_tolerance > 0) need a Verlet skin");
+    update_candidates(x, support_radius, n);
+    x_ = x;
+    support_radius_ = support_radius;
+    const std::int64_t nq = static_cast<std::int64_t>(n);
+    // A new layout when there is none yet, for another kind of row (second gradients or not), or when
+    // a row to rebuild has outgrown its slot: every row is then built.
+    bool fresh = lazy_size_.size() != n || (second != nullptr) != (second_ != nullptr);
+    if (!fresh) {
+      bool overflow = false;
+#pragma omp parallel for schedule(static) reduction(|| : overflow) if (nq >= kParallelMinParticles)
+      for (std::int64_t p = 0; p < nq; ++p) {
+        const bool due = row_due(p);
+        due_[p] = due ? 1 : 0;
+        if (due && members_now(p) > lazy_offsets_[p + 1] - lazy_offsets_[p]) overflow = true;
+      }
+      fresh = overflow;
+    }
+    if (fresh) {
+      gradients_of_old_rows();
+      // Slots with room for the neighbour counts to grow (compression) before the next new layout.
+      lazy_offsets_.resize(n + 1);
+      lazy_offsets_[0] = 0;
+#pragma omp parallel for schedule(static) if (nq >= kParallelMinParticles)
+      for (std::int64_t p = 0; p < nq; ++p) {
+        const std::int64_t c = members_now(p);
+        lazy_offsets_[p + 1] = c + c / 8 + 4;
+      }
+      for (std::size_t p = 0; p < n; ++p) lazy_offsets_[p + 1] += lazy_offsets_[p];
+      const std::size_t slots = static_cast<std::size_t>(lazy_offsets_[n]);
+      if (lazy_nodes_.capacity() < slots) lazy_nodes_.reserve(slots + slots / 5);
+      lazy_nodes_.resize(slots);
+      if (built_offset_.capacity() < 3 * slots) built_offset_.reserve(3 * slots + 3 * slots / 5);
+      built_offset_.resize(3 * slots);
+      lazy_size_.assign(n, 0);
+      due_.assign(n, 1);
+      ++layouts;
+    }
+    entries = static_cast<std::size_t>(lazy_offsets_[n]);
+    const std::size_t due = static_cast<std::size_t>(std::count(due_.begin(), due_.end(), std::uint8_t{1}));
+    rows_built += due;
+    rows_kept += n - due;
   } else {
-    nodes_covering<3>(x, n, x, support_radius, n, support, workspace);
-    ++searches;
+    gradients_of_old_rows();
+    if (skin > 0.0) {
+      find_with_skin(x, support_radius, n);
+    } else {
+      nodes_covering<3>(x, n, x, support_radius, n, support, workspace);
+      ++searches;
+    }
+    entries = support.indices.size();
+    // The search sizes its lists exactly; give them (and its per-thread buffers) headroom so that the
+    // slow growth of neighbour counts does not reallocate on the next steps.
+    if (support.indices.capacity() < entries + entries / 10) support.indices.reserve(entries + entries / 4);
+    for (auto& block : workspace.blocks)
+      if (block.capacity() < block.size() + block.size() / 10) block.reserve(block.size() + block.size() / 4);
   }
-  const std::size_t entries = support.indices.size();
-  // The search sizes its lists exactly; give them (and its per-thread buffers) headroom so that the
-  // slow growth of neighbour counts does not reallocate on the next steps.
-  if (support.indices.capacity() < entries + entries / 10) support.indices.reserve(entries + entries / 4);
-  for (auto& block : workspace.blocks)
-    if (block.capacity() < block.size() + block.size() / 10) block.reserve(block.size() + block.size() / 4);
   longest_ = 0;
   if (!keep_psi)
-    for (std::size_t p = 0; p < n; ++p) longest_ = std::max(longest_, support.count(p));
+    for (std::size_t p = 0; p < n; ++p)
+      longest_ = std::max(longest_, lazy() ? lazy_offsets_[p + 1] - lazy_offsets_[p] : support.count(p));
   if (keep_psi) resize_with_headroom(psi, entries);
   resize_with_headroom(grad, 3 * entries);
   info.resize(n);
@@ -70,6 +127,47 @@ void ShapeCache::prepare(const rk::Options& options, const double* x, const doub
   second_ = second;
   x_ = x;
   support_radius_ = support_radius;
+  return old_rows_done;
+}
+
+bool ShapeCache::row_due(std::int64_t p) const {
+  const double* xp = x_ + 3 * p;
+  const double lim = reuse_tolerance * support_radius_[p], lim2 = lim * lim;
+  const std::int32_t* cand = candidates.row(p);
+  const std::int64_t ncand = candidates.count(p), b = lazy_offsets_[p];
+  const std::int32_t* nodes = lazy_nodes_.data() + b;
+  const float* built = built_offset_.data() + 3 * b;
+  const std::int64_t size = lazy_size_[p];
+  // Both lists ascend (the search's order), so one merge walk pairs the row's nodes with candidates.
+  std::int64_t m = 0;
+  for (std::int64_t k = 0; k < ncand; ++k) {
+    const std::int32_t j = cand[k];
+    const double* xj = x_ + 3 * static_cast<std::int64_t>(j);
+    const double r[3] = {xj[0] - xp[0], xj[1] - xp[1], xj[2] - xp[2]};
+    if (m < size && nodes[m] == j) {  // a node of the row: has it moved relative to the point?
+      const double e0 = r[0] - built[3 * m], e1 = r[1] - built[3 * m + 1], e2 = r[2] - built[3 * m + 2];
+      if (!(e0 * e0 + e1 * e1 + e2 * e2 <= lim2)) return true;  // (a non-finite position too)
+      ++m;
+    } else {  // outside the support at the build: has it come in by more than the tolerance?
+      const double inner = support_radius_[j] - lim;
+      if (!(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] >= inner * inner)) return true;
+    }
+  }
+  return m < size;  // a node no longer among the candidates (searched again since) has moved far
+}
+
+std::int64_t ShapeCache::members_now(std::int64_t p) const {
+  const double* xp = x_ + 3 * p;
+  const std::int32_t* cand = candidates.row(p);
+  const std::int64_t ncand = candidates.count(p);
+  std::int64_t members = 0;
+  for (std::int64_t k = 0; k < ncand; ++k) {
+    const std::int32_t j = cand[k];
+    const double* xj = x_ + 3 * static_cast<std::int64_t>(j);
+    const double r[3] = {xj[0] - xp[0], xj[1] - xp[1], xj[2] - xp[2]};
+    members += r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < support_radius_[j] * support_radius_[j] ? 1 : 0;
+  }
+  return members;
 }
 
 double* ShapeCache::thread_scratch() {
@@ -80,9 +178,29 @@ double* ShapeCache::thread_scratch() {
 }
 
 void ShapeCache::build_row(std::int64_t p, double* scratch) {
-  const std::int64_t b = support.begin(p);
-  const std::int32_t* row = support.row(p);
-  const int count = static_cast<int>(support.count(p));
+  if (lazy()) {
+    if (!due_[p]) return;  // kept: still within the tolerance of the configuration it was built in
+    // The row's nodes: its candidates that cover x_p now (the search's own test), and where they are.
+    const std::int64_t b = lazy_offsets_[p], ncand = candidates.count(p);
+    const std::int32_t* cand = candidates.row(p);
+    const double* xp = x_ + 3 * p;
+    std::int32_t* nodes = lazy_nodes_.data() + b;
+    float* built = built_offset_.data() + 3 * b;
+    std::int32_t size = 0;
+    for (std::int64_t k = 0; k < ncand; ++k) {
+      const std::int32_t j = cand[k];
+      const double* xj = x_ + 3 * static_cast<std::int64_t>(j);
+      const double r[3] = {xj[0] - xp[0], xj[1] - xp[1], xj[2] - xp[2]};
+      if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < support_radius_[j] * support_radius_[j]) {
+        for (int d = 0; d < 3; ++d) built[3 * size + d] = static_cast<float>(r[d]);
+        nodes[size++] = j;
+      }
+    }
+    lazy_size_[p] = size;
+  }
+  const std::int64_t b = row_begin(p);
+  const std::int32_t* row = row_nodes(p);
+  const int count = static_cast<int>(row_size(p));
   double* values = keep_psi ? psi.data() + b : scratch;
   if (second_) {
     hess_path[p] = shape_and_second_gradients(options_, *second_, x_ + 3 * p, x_, support_radius_, row, count, values,
@@ -92,7 +210,7 @@ void ShapeCache::build_row(std::int64_t p, double* scratch) {
   }
 }
 
-void ShapeCache::find_with_skin(const double* x, const double* support_radius, std::size_t n) {
+bool ShapeCache::update_candidates(const double* x, const double* support_radius, std::size_t n) {
   const std::int64_t nq = static_cast<std::int64_t>(n);
   bool valid = candidate_x.size() == 3 * n && candidates.size() == n;
   double s = 0.0;
@@ -130,6 +248,12 @@ void ShapeCache::find_with_skin(const double* x, const double* support_radius, s
   } else {
     ++reuses;
   }
+  return !valid;
+}
+
+void ShapeCache::find_with_skin(const double* x, const double* support_radius, std::size_t n) {
+  const std::int64_t nq = static_cast<std::int64_t>(n);
+  update_candidates(x, support_radius, n);
   // Filter each candidate row into `filtered` (same offsets), then compact into `support`.
   const std::size_t centries = candidates.indices.size();
   if (filtered.capacity() < centries) filtered.reserve(centries + centries / 4);

@@ -7,6 +7,7 @@
 // point (shape_and_second_gradients); without, from the linear-only version of the same code
 // (shape_gradients). Both equal rk::evaluate<3> (+ second_gradients) to round-off.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "solver/second_gradients.hpp"
@@ -25,7 +26,9 @@ struct RowVelocityGradients {
 };
 
 struct ShapeCache {
-  NeighbourList support;           // support.row(L): the particles J whose support covers x_L
+  // The exact lists of the last prepare() without lazy rows (read rows through row_nodes/row_size/
+  // row_begin, which also serve lazy rows).
+  NeighbourList support;
   // keep_psi: Psi_J(x_L), one per entry. Otherwise (the solver: nothing of its step reads the values)
   // only per-thread scratch of the evaluation, which is not written back to memory.
   std::vector<double> psi;
@@ -44,6 +47,19 @@ struct ShapeCache {
   std::vector<double> candidate_x, candidate_support, inflated_support;
   std::vector<std::int32_t> filtered;
   std::size_t searches = 0, reuses = 0;  // rebuilds that searched / that reused the candidates
+  // Lazy rows (reuse_tolerance > 0; needs skin > 0). A row is rebuilt only when its neighbourhood has
+  // changed shape since it was built: some node J of it moved relative to the point L by more than
+  // reuse_tolerance * a_L, or a candidate that was outside the support has come in deeper than that.
+  // Otherwise the row keeps the functions of the configuration it was built in: exact for a rigid
+  // translation, within O(reuse_tolerance) of the current gradients otherwise (the strain since the
+  // build). Every row still reproduces linear fields in its build configuration, and the forces and
+  // the strain rates read the same gradients, so momentum and the energy balance stay exact. Rows live
+  // in slots of their own with room to grow (a new layout, every row built, when one outgrows it), so
+  // a new search of the candidates does not force rebuilds. 0: every row is rebuilt at every prepare
+  // (the semi-Lagrangian method as such).
+  double reuse_tolerance = 0.0;
+  std::size_t rows_built = 0, rows_kept = 0;  // rows rebuilt / kept over all prepares (lazy rows only)
+  std::size_t layouts = 0;                    // new slot layouts (every row built; lazy rows only)
 
  private:
   // The arguments of the last prepare(), for build_row.
@@ -52,6 +68,17 @@ struct ShapeCache {
   const double* x_ = nullptr;
   const double* support_radius_ = nullptr;
   std::int64_t longest_ = 0;  // the longest row (the evaluation scratch per thread without keep_psi)
+  // Lazy rows: the nodes of each row (a subset of its candidates, in their order), their number, and
+  // x_J - x_L at the row's build (3 floats per entry: only compared with the tolerance); due_[L]: the
+  // row must be built at the configuration of this prepare.
+  std::vector<std::int32_t> lazy_nodes_, lazy_size_;
+  std::vector<float> built_offset_;
+  std::vector<std::uint8_t> due_;
+  bool lazy() const { return reuse_tolerance > 0.0; }
+  std::vector<std::int64_t> lazy_offsets_;  // row L's slot: [lazy_offsets_[L], lazy_offsets_[L + 1])
+  bool row_due(std::int64_t p) const;
+  std::int64_t members_now(std::int64_t p) const;  // candidates of p that cover x_p now
+  bool update_candidates(const double* x, const double* support_radius, std::size_t n);  // true: searched
 
  public:
 
@@ -62,14 +89,27 @@ struct ShapeCache {
   // The same in parts, for a caller that works on each row while it is still in cache: prepare (the
   // neighbour lists and the sizes; keeps the pointers for build_row), then, from inside a parallel
   // region, thread_scratch once per thread and build_row for every point. rebuild is exactly that.
-  void prepare(const rk::Options& options, const double* x, const double* support, std::size_t n,
-               const SecondGradientOptions* second);
+  // old_rows (optional): the caller also needs the velocity gradients of the rows as they are before
+  // this prepare. Returns true when prepare computed them for every row into old_rows (first, before
+  // it discarded the rows: no lazy rows, or a new layout), false when the old rows stay in place for
+  // the caller to read (lazy rows: a due row's old values until its build_row, a kept row's for good).
+  bool prepare(const rk::Options& options, const double* x, const double* support, std::size_t n,
+               const SecondGradientOptions* second, const RowVelocityGradients* old_rows = nullptr);
   double* thread_scratch();  // per-thread evaluation buffer (null with keep_psi); call from every thread
   void build_row(std::int64_t p, double* scratch);
   std::size_t count(rk::Path path) const;
   void find_with_skin(const double* x, const double* support_radius, std::size_t n);  // fills `support`
   std::size_t count(SecondGradientPath path) const;
   bool has_second_gradients() const { return !hess.empty(); }
+
+  // Lazy rows and p kept at this prepare (build_row(p) leaves it as it was).
+  bool row_kept(std::size_t p) const { return lazy() && !due_[p]; }
+  // Row p: its entries in psi/grad/hess start at row_begin(p); row_size(p) nodes, row_nodes(p).
+  std::int64_t row_begin(std::size_t p) const { return lazy() ? lazy_offsets_[p] : support.begin(p); }
+  std::int64_t row_size(std::size_t p) const { return lazy() ? lazy_size_[p] : support.count(p); }
+  const std::int32_t* row_nodes(std::size_t p) const {
+    return (lazy() ? lazy_nodes_.data() : support.indices.data()) + row_begin(p);
+  }
 };
 
 }  // namespace uhpc::macro

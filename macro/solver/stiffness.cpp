@@ -38,7 +38,7 @@ Eigen::MatrixXd nodal_integration_stiffness(const ShapeCache& shapes, const doub
   };
   for (std::size_t L = 0; L < n; ++L) {
     if (integration_points && !integration_points[L]) continue;
-    const std::int64_t count = shapes.support.count(L), b = shapes.support.begin(L);
+    const std::int64_t count = shapes.row_size(L), b = shapes.row_begin(L);
     const Eigen::MatrixXd B = strain_operator(shapes.grad.data() + 3 * b, count, [](const double* base, std::int64_t k, double* g) {
       for (int d = 0; d < 3; ++d) g[d] = base[3 * k + d];
     });
@@ -52,7 +52,7 @@ Eigen::MatrixXd nodal_integration_stiffness(const ShapeCache& shapes, const doub
         KL += moment * Bd.transpose() * C * Bd;
       }
     }
-    const std::int32_t* row = shapes.support.row(L);
+    const std::int32_t* row = shapes.row_nodes(L);
     for (std::int64_t k = 0; k < count; ++k)
       for (std::int64_t m = 0; m < count; ++m)
         K.block<3, 3>(3 * static_cast<Eigen::Index>(row[k]), 3 * static_cast<Eigen::Index>(row[m])) +=
