@@ -86,8 +86,8 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
   if (!(options_.energy_error_limit >= 0)) throw std::invalid_argument("ExplicitSolver: energy_error_limit must be >= 0");
   if (!(options_.domain_margin > 0)) throw std::invalid_argument("ExplicitSolver: domain_margin must be > 0");
   if (!(options_.neighbour_skin >= 0)) throw std::invalid_argument("ExplicitSolver: neighbour_skin must be >= 0");
-  if (!(options_.shape_reuse_tolerance >= 0 && options_.shape_reuse_tolerance < 0.5 * options_.neighbour_skin) &&
-      options_.shape_reuse_tolerance != 0)
+  const double reuse = options_.shape_reuse_tolerance;
+  if (reuse != 0 && !(reuse > 0 && reuse < 0.5 * options_.neighbour_skin))
     throw std::invalid_argument("ExplicitSolver: shape_reuse_tolerance must be 0 or in (0, neighbour_skin / 2)");
   shapes_.skin = options_.neighbour_skin;
   shapes_.reuse_tolerance = options_.shape_reuse_tolerance;

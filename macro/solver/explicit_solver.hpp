@@ -68,8 +68,8 @@ struct SolverOptions {
   double neighbour_skin = 0.2;
   // Lazy RK rows (ShapeCache::reuse_tolerance; needs neighbour_skin > 0): a particle's shape functions
   // are rebuilt only once a neighbour has moved relative to it by more than this fraction of its
-  // support radius since they were built (or the candidates were searched again); otherwise they are
-  // kept. 0: every row is rebuilt at every configuration (the semi-Lagrangian method as such).
+  // support radius since they were built, or a neighbour outside its support has come in by more;
+  // otherwise they are kept (a new neighbour search does not force rebuilds). 0: every row is rebuilt at every configuration (the semi-Lagrangian method as such).
   double shape_reuse_tolerance = 0.0;
   // Step-collapse guard: repeat a step whose new stable step is below this fraction of the step taken
   // (0 switches the guard off; so does fixed_dt_s). With CFL 0.4 and 0.5 an accepted step was at most

@@ -156,17 +156,19 @@ bool ShapeCache::row_due(std::int64_t p) const {
   return m < size;  // a node no longer among the candidates (searched again since) has moved far
 }
 
-std::int64_t ShapeCache::members_now(std::int64_t p) const {
+bool ShapeCache::covers(std::int64_t p, std::int32_t j, double* r) const {
   const double* xp = x_ + 3 * p;
+  const double* xj = x_ + 3 * static_cast<std::int64_t>(j);
+  for (int d = 0; d < 3; ++d) r[d] = xj[d] - xp[d];
+  return r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < support_radius_[j] * support_radius_[j];
+}
+
+std::int64_t ShapeCache::members_now(std::int64_t p) const {
   const std::int32_t* cand = candidates.row(p);
   const std::int64_t ncand = candidates.count(p);
   std::int64_t members = 0;
-  for (std::int64_t k = 0; k < ncand; ++k) {
-    const std::int32_t j = cand[k];
-    const double* xj = x_ + 3 * static_cast<std::int64_t>(j);
-    const double r[3] = {xj[0] - xp[0], xj[1] - xp[1], xj[2] - xp[2]};
-    members += r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < support_radius_[j] * support_radius_[j] ? 1 : 0;
-  }
+  double r[3];
+  for (std::int64_t k = 0; k < ncand; ++k) members += covers(p, cand[k], r) ? 1 : 0;
   return members;
 }
 
@@ -183,15 +185,13 @@ void ShapeCache::build_row(std::int64_t p, double* scratch) {
     // The row's nodes: its candidates that cover x_p now (the search's own test), and where they are.
     const std::int64_t b = lazy_offsets_[p], ncand = candidates.count(p);
     const std::int32_t* cand = candidates.row(p);
-    const double* xp = x_ + 3 * p;
     std::int32_t* nodes = lazy_nodes_.data() + b;
     float* built = built_offset_.data() + 3 * b;
     std::int32_t size = 0;
+    double r[3];
     for (std::int64_t k = 0; k < ncand; ++k) {
       const std::int32_t j = cand[k];
-      const double* xj = x_ + 3 * static_cast<std::int64_t>(j);
-      const double r[3] = {xj[0] - xp[0], xj[1] - xp[1], xj[2] - xp[2]};
-      if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2] < support_radius_[j] * support_radius_[j]) {
+      if (covers(p, j, r)) {
         for (int d = 0; d < 3; ++d) built[3 * size + d] = static_cast<float>(r[d]);
         nodes[size++] = j;
       }

@@ -78,6 +78,8 @@ struct ShapeCache {
   std::vector<std::int64_t> lazy_offsets_;  // row L's slot: [lazy_offsets_[L], lazy_offsets_[L + 1])
   bool row_due(std::int64_t p) const;
   std::int64_t members_now(std::int64_t p) const;  // candidates of p that cover x_p now
+  // Does node j's support cover x_p now (the search's own test)? r = x_j - x_p.
+  bool covers(std::int64_t p, std::int32_t j, double* r) const;
   bool update_candidates(const double* x, const double* support_radius, std::size_t n);  // true: searched
 
  public:
