@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "bodies/generators.hpp"
+#include "box_impact_sphere.hpp"
 #include "solver/explicit_solver.hpp"
 
 namespace uhpc::macro {
@@ -48,12 +49,7 @@ ExplicitSolver make_impact(double tolerance) {
   const SolverOptions options = with_tolerance(tolerance);
   ExplicitSolver solver(Particles::from_body(body, kRho, options.support_factor),
                         make_material_set(ElasticMaterial(ElasticParams{kRho, kK, kG}), body.size()), options);
-  RigidSphere sphere;
-  sphere.mass_kg = 0.01;
-  sphere.radius_m = 0.006;
-  sphere.x = {0.025, 0.02, -0.0053};
-  sphere.v = {0.0, 0.0, 300.0};
-  solver.set_sphere(sphere);
+  solver.set_sphere(test::box_impact_sphere());
   solver.initialize();
   return solver;
 }

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "bodies/generators.hpp"
+#include "box_impact_sphere.hpp"
 #include "solver/explicit_solver.hpp"
 
 namespace uhpc::macro {
@@ -21,12 +22,7 @@ ExplicitSolver make(double skin, bool sphere_impact) {
   ExplicitSolver solver(Particles::from_body(body, 2500.0, options.support_factor),
                         make_material_set(ElasticMaterial(ElasticParams{2500.0, 20e9, 15e9}), body.size()), options);
   if (sphere_impact) {
-    RigidSphere sphere;
-    sphere.mass_kg = 0.01;
-    sphere.radius_m = 0.006;
-    sphere.x = {0.025, 0.02, -0.0053};
-    sphere.v = {0.0, 0.0, 300.0};
-    solver.set_sphere(sphere);
+    solver.set_sphere(test::box_impact_sphere());
   } else {
     set_initial_velocity(solver.particles(), [](const double* x) -> Vec3 {
       return {3000.0 * (x[1] - 0.02), -3000.0 * (x[0] - 0.025) + 400.0 * x[2], 20.0};

@@ -6,6 +6,7 @@
 #include "allocation_counter.hpp"
 
 #include "bodies/generators.hpp"
+#include "box_impact_sphere.hpp"
 #include "solver/explicit_solver.hpp"
 
 using uhpc::test::g_allocations;
@@ -56,12 +57,7 @@ void no_allocation_with_the_sphere_in_contact(StrainConfiguration strain, double
   options.support_factor = 2.5;  // NSNI at 2.0 is unstable under a point contact (macro/README.md)
   ExplicitSolver solver(Particles::from_body(body, 2500.0, options.support_factor),
                         make_material_set(ElasticMaterial(ElasticParams{2500.0, 20e9, 15e9}), body.size()), options);
-  RigidSphere sphere;
-  sphere.mass_kg = 0.01;
-  sphere.radius_m = 0.006;
-  sphere.x = {0.025, 0.02, -0.0053};  // a few um from the four particles nearest its axis
-  sphere.v = {0.0, 0.0, 50.0};
-  solver.set_sphere(sphere);
+  solver.set_sphere(test::box_impact_sphere(50.0));
   solver.initialize();
   for (int s = 0; s < 5; ++s) ASSERT_TRUE(solver.step());
   int in_contact = 0;
