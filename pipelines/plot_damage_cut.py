@@ -108,7 +108,7 @@ def main() -> None:
                 why = f"sphere leaves the back face at {t_exit * 1e6:.1f} us"
             else:
                 index = len(steps) - 1
-                why = "the sphere does not leave the back face: last output"
+                why = "last output: the sphere's rear is not yet past the back face when the run ends"
         group = f[steps[index]]
         time = times[index]
         x = group["position"][:]
