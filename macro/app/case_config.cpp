@@ -76,6 +76,7 @@ SolverOptions read_solver(const Config& c) {
   const Config v = c.section("bulk_viscosity");
   o.viscosity.c_linear = v.number("linear", Range::non_negative());
   o.viscosity.c_quadratic = v.number("quadratic", Range::non_negative());
+  o.viscosity.damp_stress_free_points = v.choice("stress_free_points", {"damped", "undamped"}) == "damped";
   o.dt_collapse_fraction = c.number("dt_collapse_fraction", Range{0.0, 1.0, false, true});
   o.max_step_repeats = static_cast<int>(c.integer("max_step_repeats", Range::closed(0, 100)));
   o.energy_error_limit = c.number("energy_error_limit", Range::non_negative());

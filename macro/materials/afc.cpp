@@ -133,11 +133,11 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
 }
 
 double AfcMaterial::wave_speed(const State& state, double density_ratio) const {
-  // A fully failed point that is open (expanded past its reference density, so P = 0 and S = 0 on the
-  // tension side: stress-free, no tangent) resists nothing until it closes back to rho0; its speed is
-  // that of the closed material. At the current density it would grow as sqrt(V / V0) with a shear
-  // modulus that no longer acts, and expanding ejecta (V up to 1e3 V0) would collapse the stable step.
-  if (state.d_plus >= 1.0 && density_ratio < 1.0) density_ratio = 1.0;
+  // A stress-free point (fully failed and open: no tangent) resists nothing until it closes back to
+  // rho0; its speed is that of the closed material. At the current density it would grow as
+  // sqrt(V / V0) with a shear modulus that no longer acts, and expanding ejecta (V up to 1e3 V0) would
+  // collapse the stable step.
+  if (stress_free(state, density_ratio)) density_ratio = 1.0;
   const double mu = density_ratio - 1.0;
   double slope = hydro_.slope(mu, state.mu_max);
   if (p_.options.wave_speed_from_unloading_modulus)

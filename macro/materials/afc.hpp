@@ -53,6 +53,11 @@ class AfcMaterial {
   // Dilatational wave speed sqrt((K + 4G/3) / rho), K = rho dP/drho = (1 + mu) dP/dmu the current
   // tangent of the hydrostat (AfcOptions::wave_speed_from_unloading_modulus for the bound).
   double wave_speed(const State& state, double density_ratio) const;
+  // A fully failed point (d+ = 1) that is open (expanded past its reference density): P = 0 and S = 0
+  // on the tension side, so it carries no stress and resists nothing until it closes back to rho0.
+  bool stress_free(const State& state, double density_ratio) const {
+    return state.d_plus >= 1.0 && density_ratio < 1.0;
+  }
   double reference_density() const { return p_.density_kg_m3; }
   // An upper bound of the tangent: (1 + mu) max(K_u, dP/dmu) and G (keeps the NSNI term stabilising).
   Moduli moduli(const State& state) const;

@@ -25,6 +25,8 @@ class ElasticMaterial {
   void update(State& state, const MaterialStep& step) const;
   // Dilatational wave speed sqrt((K + 4G/3) / rho) at the current density.
   double wave_speed(const State& state, double density_ratio) const;
+  // Whether the point carries no stress and resists no deformation at this density (never, elastic).
+  bool stress_free(const State&, double) const { return false; }
   double reference_density() const { return p_.density_kg_m3; }
   Moduli moduli(const State&) const { return {p_.bulk_modulus_Pa, p_.shear_modulus_Pa}; }
   // Energy dissipated per unit reference volume so far (none for an elastic law).

@@ -31,6 +31,7 @@ class J2Material {
 
   void update(State& state, const MaterialStep& step) const;
   double wave_speed(const State& state, double density_ratio) const;
+  bool stress_free(const State&, double) const { return false; }  // never: the metal does not fail
   double reference_density() const { return p_.density_kg_m3; }
   // The elastic moduli and the last return (linearised radial return with linear hardening: the
   // component along the deviator follows the yield stress by H / (3G + H)).

@@ -19,6 +19,10 @@ inline double stable_length(double volume, double spacing) { return std::fmin(st
 struct BulkViscosity {
   double c_linear = 0.06;
   double c_quadratic = 1.5;
+  // Whether it also acts on points the law calls stress-free (fully failed, open AFC points): true as
+  // LS-DYNA does; false leaves them undamped until they close, as they carry no wave to spread (the
+  // option and the finding behind it: macro/README.md, "the ejecta instability").
+  bool damp_stress_free_points = true;
 
   double pressure(double density, double h, double c, double trace_d) const {
     if (!(trace_d < 0.0)) return 0.0;

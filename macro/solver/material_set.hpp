@@ -3,7 +3,7 @@
 // solver visits it once per particle loop and the loop body is a direct (inlinable) call, never a
 // virtual one. A new law (the AFC concrete model) is one more alternative here; it needs the members
 // every law has: State with a `stress` (Mat3), update(State&, MaterialStep), wave_speed(State,
-// density_ratio), reference_density() and dissipated_energy(State).
+// density_ratio), stress_free(State, density_ratio), reference_density() and dissipated_energy(State).
 #include <cstddef>
 #include <variant>
 #include <vector>

@@ -91,10 +91,12 @@ void update_stress(Block& block, Particles& p, std::int64_t i, double dt, const 
   const double c = block.law.wave_speed(state, step.density_ratio);
   p.wave_speed[i] = c;
   const double h = stable_length(v_new, p.spacing[i]);
-  const double q = viscosity.pressure(p.density[i], h, c, trD);
+  const bool damped = viscosity.damp_stress_free_points || !block.law.stress_free(state, step.density_ratio);
+  const double trD_damped = damped ? trD : 0.0;
+  const double q = viscosity.pressure(p.density[i], h, c, trD_damped);
   p.bulk_q[i] = q;
   sums.viscous_work += -q * trD * dt * v_mid;
-  sums.min_critical_step = std::min(sums.min_critical_step, viscosity.critical_step(h, c, trD));
+  sums.min_critical_step = std::min(sums.min_critical_step, viscosity.critical_step(h, c, trD_damped));
 }
 
 // Adds a thread's sums into the reduction variables of its parallel region (each starts at 0, so the
