@@ -21,7 +21,7 @@ struct BulkViscosity {
   double c_quadratic = 1.5;
   // Whether it also acts on points the law calls stress-free (fully failed, open AFC points): true as
   // LS-DYNA does; false leaves them undamped until they close, as they carry no wave to spread (the
-  // option and the finding behind it: macro/README.md, "the ejecta instability").
+  // option and the finding behind it: macro/README.md, "the viscosity of stress-free ejecta").
   bool damp_stress_free_points = true;
 
   double pressure(double density, double h, double c, double trace_d) const {
