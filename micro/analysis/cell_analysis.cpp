@@ -42,6 +42,7 @@ class Analysis {
     law_.fracture_energy_J_m2 = material.fracture_energy_J_m2;
     law_.activation_ratio = o.activation_ratio;
     law_.contact_penalty_ratio = o.contact_penalty_ratio;
+    law_.residual_stiffness_ratio = o.residual_stiffness_ratio;
     law_.mode = o.mode;
     elastic_ = material.elastic;
     axis_ = cell.load == LoadAxis::X ? 0 : 1;

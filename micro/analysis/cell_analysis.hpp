@@ -115,6 +115,7 @@ struct CellAnalysisOptions {
   GrowthHold growth_hold = GrowthHold::OldSegments;
   double activation_ratio = 1e-3;  // cohesive law, cohesive_law.hpp
   double contact_penalty_ratio = 1.0;
+  double residual_stiffness_ratio = 1e-8;  // > 0: a fragment cut loose keeps a defined position
   CohesiveMode mode = CohesiveMode::ModeI;
   PathControl control = PathControl::CrackOpening;
   int elastic_states = 4;                // states on the linear branch before the first crack

@@ -40,6 +40,7 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
   opt(c, "enrichment.min_ratio", o.enrichment.min_enrichment_ratio, Range{0.0, 0.1, false, true});
   opt(c, "cohesive.activation_ratio", o.activation_ratio, Range{0.0, 0.1, true, false});
   opt(c, "cohesive.contact_penalty_ratio", o.contact_penalty_ratio, Range::positive());
+  opt(c, "cohesive.residual_stiffness_ratio", o.residual_stiffness_ratio, Range{0.0, 1e-3, true, false});
   if (c.has("cohesive.mode"))
     o.mode = c.choice("cohesive.mode", {"mode_i", "mixed"}) == "mixed" ? CohesiveMode::MixedMode : CohesiveMode::ModeI;
   opt(c, "growth.increment_spacings", o.growth.increment_spacings, Range::closed(0.25, 4.0));

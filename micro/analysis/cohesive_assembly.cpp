@@ -8,8 +8,6 @@ namespace uhpc::micro {
 
 namespace {
 
-constexpr double kTangentFloor = 1e-8;
-
 // node -> (point, entry) incidence of a table (its transpose), as in stiffness_assembly.cpp, over
 // generalized nodes.
 struct Incidence {
@@ -229,14 +227,10 @@ void FractureSystem::evaluate(const Eigen::VectorXd& d, double lambda, const Coh
     if (!tangent) continue;
     // Q C Q^T, Q = [n s].
     double C[2][2];
-    // A floor of tangent_floor x K0 on the diagonal (tangent only, the residual is exact): a fragment
-    // cut loose by cracks that have fully opened has no stiffness left and would make the Newton
-    // matrix singular; the floor fixes its rigid motion without changing any converged state.
-    const double floor = kTangentFloor * law.initial_stiffness();
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b) {
         const double Qa[2] = {n[a], s[a]}, Qb[2] = {n[b], s[b]};
-        C[a][b] = a == b ? floor + kv : 0.0;  // Q kv I Q^T = kv I
+        C[a][b] = a == b ? kv : 0.0;  // Q kv I Q^T = kv I
         for (int k = 0; k < 2; ++k)
           for (int l = 0; l < 2; ++l) C[a][b] += Qa[k] * r.tangent[2 * k + l] * Qb[l];
       }

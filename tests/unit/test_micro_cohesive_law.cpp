@@ -2,6 +2,7 @@
 // G_f as the area under it, secant unloading and reloading with the history maximum, the consistent
 // tangent against central finite differences (loading and unloading, Mode I and mixed mode), and the
 // no-interpenetration penalty.
+#include <array>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -11,11 +12,13 @@
 namespace uhpc::micro {
 namespace {
 
+// Without the residual spring (tested on its own below), so the envelope's values come out exactly.
 CohesiveLaw table2(CohesiveMode mode = CohesiveMode::ModeI) {
   CohesiveLaw law;
   law.tensile_strength_Pa = 22.7e6;
   law.fracture_energy_J_m2 = 35.0;
   law.mode = mode;
+  law.residual_stiffness_ratio = 0.0;
   return law;
 }
 
@@ -109,6 +112,34 @@ TEST(microCohesiveLaw, TangentMatchesFiniteDifferences) {
   EXPECT_LT(cohesive_response(law, 0.5 * law.critical_opening(), 0.0, law.activation_opening()).tangent[0], 0.0);
 }
 
+TEST(microCohesiveLaw, ResidualSpringIsElasticAndParallel) {
+  // t = law + K_r w in both directions, tangent + K_r, history and dissipation untouched: a point opened
+  // past w_c keeps K_r in opening and in sliding (also in contact), so a fragment cut loose has stiffness.
+  for (CohesiveMode mode : {CohesiveMode::ModeI, CohesiveMode::MixedMode}) {
+    CohesiveLaw plain = table2(mode);
+    CohesiveLaw law = plain;
+    law.residual_stiffness_ratio = 1e-8;
+    EXPECT_DOUBLE_EQ(CohesiveLaw{}.residual_stiffness_ratio, 1e-8);  // the default
+    const double Kr = 1e-8 * law.initial_stiffness(), wc = law.critical_opening();
+    for (const auto& w : {std::array<double, 3>{0.3 * wc, 0.1 * wc, 0.01 * wc}, std::array<double, 3>{2.0 * wc, 0.5 * wc, 2.0 * wc},
+                          std::array<double, 3>{-0.01 * wc, 3.0 * wc, 1.5 * wc}, std::array<double, 3>{0.2 * wc, 0.0, 0.6 * wc}}) {
+      const CohesiveResponse a = cohesive_response(plain, w[0], w[1], w[2]), b = cohesive_response(law, w[0], w[1], w[2]);
+      EXPECT_DOUBLE_EQ(b.kappa, a.kappa);
+      EXPECT_NEAR(b.t[0], a.t[0] + Kr * w[0], 1e-9 * std::abs(a.t[0]) + 1e-12);
+      EXPECT_NEAR(b.t[1], a.t[1] + Kr * w[1], 1e-9 * std::abs(a.t[1]) + 1e-12);
+      EXPECT_DOUBLE_EQ(b.tangent[0], a.tangent[0] + Kr);
+      EXPECT_DOUBLE_EQ(b.tangent[3], a.tangent[3] + Kr);
+      EXPECT_DOUBLE_EQ(b.tangent[1], a.tangent[1]);
+      EXPECT_DOUBLE_EQ(b.tangent[2], a.tangent[2]);
+    }
+    // Fully open: only the spring, 1e-5 f_t at w_c.
+    EXPECT_NEAR(cohesive_response(law, wc, 0.0, 2.0 * wc).t[0], 1e-5 * law.tensile_strength_Pa, 1e-12 * law.tensile_strength_Pa);
+    EXPECT_DOUBLE_EQ(law.dissipated(2.0 * wc), plain.dissipated(2.0 * wc));
+    check_tangent(law, 0.3 * wc, 0.05 * wc, law.activation_opening());
+    check_tangent(law, 0.5 * wc, 2.0 * wc, 1.5 * wc);
+  }
+}
+
 TEST(microCohesiveLaw, MixedModeUsesTheEffectiveOpening) {
   const CohesiveLaw law = table2(CohesiveMode::MixedMode);
   const double wc = law.critical_opening();
@@ -151,6 +182,10 @@ TEST(microCellAnalysisSettings, DefaultsValuesAndErrors) {
   EXPECT_EQ(d.control, PathControl::CrackOpening);
   EXPECT_EQ(d.mode, CohesiveMode::ModeI);
   EXPECT_DOUBLE_EQ(d.separation_fraction, 0.01);
+  EXPECT_DOUBLE_EQ(d.residual_stiffness_ratio, 1e-8);
+  EXPECT_DOUBLE_EQ(read(R"({"analysis": {"cohesive": {"residual_stiffness_ratio": 1e-6}}})").residual_stiffness_ratio, 1e-6);
+  EXPECT_EQ(error(R"({"analysis": {"cohesive": {"residual_stiffness_ratio": 0}}})"),
+            "run.json: key 'analysis.cohesive.residual_stiffness_ratio': value 0 is out of range, must be in (0, 0.001]");
   const CellAnalysisOptions o = read(R"({"analysis": {"path": {"control": "displacement", "separation_fraction": 0.05},
       "cohesive": {"mode": "mixed", "activation_ratio": 0.002}, "growth": {"increment_spacings": 1.5},
       "quadrature": {"crack_points": 3, "correction": "none"}, "newton": {"max_iterations": 30}}})");
