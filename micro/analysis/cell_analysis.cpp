@@ -488,9 +488,17 @@ std::string Analysis::relax(double dlambda, int& iterations) {
     }
     iterations += n.iterations;
     commit(trial);
+    // A point opened past w_c keeps only the residual spring and, when its faces touch, slides
+    // frictionless: a fragment held only by such points creeps on under forces below the tolerance
+    // and would never settle. Components without cohesive stiffness do not count as moving.
     double moved = 0.0;
-    for (std::size_t p = 0; p < reference.size(); ++p)
-      moved = std::max(moved, std::hypot(eval_.opening[p][0] - reference[p][0], eval_.opening[p][1] - reference[p][1]));
+    const std::vector<CohesiveHistory> settled_history = flat_history();
+    for (std::size_t p = 0; p < reference.size(); ++p) {
+      const bool free = settled_history[p].kappa >= law_.critical_opening();
+      const double dn = free && eval_.opening[p][0] >= 0.0 ? 0.0 : eval_.opening[p][0] - reference[p][0];
+      const double dt = free ? 0.0 : eval_.opening[p][1] - reference[p][1];
+      moved = std::max(moved, std::hypot(dn, dt));
+    }
     reference = eval_.opening;
     if (n.iterations <= o_.easy_iterations) kv = std::max(kv / o_.step_growth, 1e-2 * softening);
     if (moved > settled) continue;
