@@ -168,8 +168,11 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
     if (threads > 1) omp_set_num_threads(1);
 #endif
     while (!stop.load()) {
-      const std::size_t k = next.fetch_add(1);
-      if (k >= total) break;
+      const std::size_t taken = next.fetch_add(1);
+      if (taken >= total) break;
+      // Largest cells first (sizes are ascending): the longest solves start first and the workers
+      // finish together instead of one of them ending the run alone on a 6.5 mm cell.
+      const std::size_t k = total - 1 - taken;
       try {
         do_cell(k);
       } catch (...) {
