@@ -17,7 +17,7 @@ void InternalForce::compute(const ShapeCache& shapes, const double* stress, cons
 #pragma omp parallel if (nn >= kParallelMinParticles)
   {
     double* buf = begin(n);
-#pragma omp for schedule(static)
+#pragma omp for schedule(static, kRowChunk)
     for (std::int64_t L = 0; L < nn; ++L) add_row(shapes, L, stress, bulk_q, volume, stress_grad, buf);
     finish(n, f);
   }

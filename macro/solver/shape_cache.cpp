@@ -62,7 +62,7 @@ bool ShapeCache::prepare(const rk::Options& options, const double* x, const doub
     bool fresh = lazy_size_.size() != n || (second != nullptr) != (second_ != nullptr);
     if (!fresh) {
       bool overflow = false;
-#pragma omp parallel for schedule(static) reduction(|| : overflow) if (nq >= kParallelMinParticles)
+#pragma omp parallel for schedule(static, kRowChunk) reduction(|| : overflow) if (nq >= kParallelMinParticles)
       for (std::int64_t p = 0; p < nq; ++p) {
         const bool due = row_due(p);
         due_[p] = due ? 1 : 0;
