@@ -16,7 +16,8 @@
 //    minutes; compared with LAMMPS by pipelines/bench_ratio.py). The disc starts at rest, so lazy rows
 //    keep most rows here: a whole shot gains less (macro/README.md, Speed).
 //  Counters of both: particles, rows_built (the fraction of RK rows rebuilt), searches/reuses (RK rebuilds in the timed steps that searched the
-//    neighbours afresh / reused the Verlet candidates), in_contact, peak_rss_MiB. peak_rss_MiB is the
+//    neighbours afresh / reused the Verlet candidates), full_searches (of the searches, those over every
+//    particle; the others searched only the fast ones), in_contact, peak_rss_MiB. peak_rss_MiB is the
 //    process's peak resident set so far (getrusage ru_maxrss after the timed steps), not the
 //    configuration's own: it includes every benchmark run before it, so for a clean figure run one
 //    configuration alone, e.g. --benchmark_filter='BM_PaperDisc100/threads:2'.
@@ -110,6 +111,7 @@ void BM_PaperDisc(benchmark::State& state) {
   solver->initialize();
   for (int s = 0; s < 2; ++s) solver->step();  // buffers settle
   const std::size_t searches0 = solver->shapes().searches, reuses0 = solver->shapes().reuses;
+  const std::size_t full0 = solver->shapes().candidate_search.outer_searches;
   const std::size_t built0 = solver->shapes().rows_built, kept0 = solver->shapes().rows_kept;
   for (auto _ : state)
     if (!solver->step()) state.SkipWithError("step failed");
@@ -117,6 +119,8 @@ void BM_PaperDisc(benchmark::State& state) {
   // RK rebuilds in the timed steps that searched the neighbours afresh / reused the Verlet candidates.
   state.counters["searches"] = static_cast<double>(solver->shapes().searches - searches0);
   state.counters["reuses"] = static_cast<double>(solver->shapes().reuses - reuses0);
+  // Of the searches, those that searched every particle (the others: only the fast ones).
+  state.counters["full_searches"] = static_cast<double>(solver->shapes().candidate_search.outer_searches - full0);
   // Lazy rows: the fraction of RK rows rebuilt in the timed steps (1 without).
   const double built = static_cast<double>(solver->shapes().rows_built - built0),
                kept = static_cast<double>(solver->shapes().rows_kept - kept0);

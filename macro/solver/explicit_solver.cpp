@@ -17,7 +17,7 @@ namespace {
 // with each row while it is still in cache its velocity gradients (averaged with the start-of-step
 // L_start, G_start when given), the stress update of its particle and its internal forces, instead of
 // four passes over the stored table. The same values, bitwise, as those passes: every particle sees
-// the same sums, and the static schedule gives each thread's force buffer the rows and the stress
+// the same sums, and the same chunked static schedule (kRowChunk) gives each thread's force buffer the rows and the stress
 // sums the terms in the order of InternalForce::compute and update_stresses.
 // With L_start (EndpointAverage) and !start_done, the start-of-step gradients come from the old rows
 // still in place (lazy rows, ShapeCache::prepare): a due row's are read before its rebuild, and a
@@ -35,7 +35,7 @@ StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& for
     double* scratch = shapes.thread_scratch();
     double* buf = force.begin(p.n);
     StressUpdateSums sums;
-#pragma omp for schedule(static)
+#pragma omp for schedule(static, kRowChunk)
     for (std::int64_t i = 0; i < n; ++i) {
       const double *Ls = nullptr, *Gs = nullptr;
       double L_old[9], G_old[27];

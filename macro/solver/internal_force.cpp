@@ -1,6 +1,7 @@
 #include "solver/internal_force.hpp"
 
 #include "solver/parallel.hpp"
+#include "solver/row_simd.hpp"
 #include "uhpc/parallel.hpp"
 
 #include <algorithm>
@@ -17,7 +18,7 @@ void InternalForce::compute(const ShapeCache& shapes, const double* stress, cons
 #pragma omp parallel if (nn >= kParallelMinParticles)
   {
     double* buf = begin(n);
-#pragma omp for schedule(static)
+#pragma omp for schedule(static, kRowChunk)
     for (std::int64_t L = 0; L < nn; ++L) add_row(shapes, L, stress, bulk_q, volume, stress_grad, buf);
     finish(n, f);
   }
@@ -44,11 +45,7 @@ void InternalForce::add_row(const ShapeCache& shapes, std::int64_t L, const doub
   const std::int32_t* row = shapes.row_nodes(L);
   const std::int64_t b = shapes.row_begin(L), count = shapes.row_size(L);
   if (!stress_grad) {
-    for (std::int64_t k = 0; k < count; ++k) {
-      const double* dpsi = shapes.grad.data() + 3 * (b + k);
-      double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
-      for (int r = 0; r < 3; ++r) fi[r] -= s[3 * r] * dpsi[0] + s[3 * r + 1] * dpsi[1] + s[3 * r + 2] * dpsi[2];
-    }
+    row_internal_force(row, count, shapes.grad.data() + 3 * b, nullptr, s, nullptr, buf);
     return;
   }
   // tg[j][m] = M_L * sum over the pairs (d, k) with sym_index m of dsigma_jk/dx_d: Psi^(dk) is
@@ -63,17 +60,7 @@ void InternalForce::add_row(const ShapeCache& shapes, std::int64_t L, const doub
   }
   // One pass over the row: each node appears once in it, so every buffer entry still receives the
   // nodal-integration term and then the NSNI term of this L, as with two passes.
-  for (std::int64_t k = 0; k < count; ++k) {
-    const double* dpsi = shapes.grad.data() + 3 * (b + k);
-    const double* h2 = shapes.hess.data() + 6 * (b + k);
-    double* fi = buf + 3 * static_cast<std::int64_t>(row[k]);
-    for (int r = 0; r < 3; ++r) fi[r] -= s[3 * r] * dpsi[0] + s[3 * r + 1] * dpsi[1] + s[3 * r + 2] * dpsi[2];
-    for (int j = 0; j < 3; ++j) {
-      double sum = 0.0;
-      for (int m = 0; m < 6; ++m) sum += tg[j][m] * h2[m];
-      fi[j] -= sum;
-    }
-  }
+  row_internal_force(row, count, shapes.grad.data() + 3 * b, shapes.hess.data() + 6 * b, s, &tg[0][0], buf);
 }
 
 void InternalForce::finish(std::size_t n, double* f) {

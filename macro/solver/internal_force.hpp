@@ -25,7 +25,7 @@ class InternalForce {
 
   // The same in parts, for a caller that adds each row while the row's gradients are still in cache.
   // Inside a parallel region: begin on every thread (its zeroed buffer), add_row for the rows L of an
-  // `omp for schedule(static)` loop, then finish on every thread (f = the sum of the buffers). The
+  // `omp for schedule(static, kRowChunk)` loop, then finish on every thread (f = the sum of the buffers). The
   // buffers then receive the rows as compute gives them: the same f, bitwise.
   double* begin(std::size_t n);
   static void add_row(const ShapeCache& shapes, std::int64_t L, const double* stress, const double* bulk_q,

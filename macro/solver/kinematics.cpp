@@ -10,7 +10,7 @@ namespace {
 void gradients_of_rows(const ShapeCache& shapes, const double* v, std::size_t n, double* L, double* G) {
   const std::int64_t nn = static_cast<std::int64_t>(n);
   const double* hess = G ? shapes.hess.data() : nullptr;
-#pragma omp parallel for schedule(static) if (nn >= kParallelMinParticles)
+#pragma omp parallel for schedule(static, kRowChunk) if (nn >= kParallelMinParticles)
   for (std::int64_t i = 0; i < nn; ++i) {
     const std::int64_t b = shapes.row_begin(i);
     point_velocity_gradients(shapes.row_nodes(i), shapes.row_size(i), shapes.grad.data() + 3 * b,

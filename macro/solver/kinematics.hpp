@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "solver/row_simd.hpp"
 #include "solver/second_gradients.hpp"
 #include "solver/shape_cache.hpp"
 
@@ -26,33 +27,7 @@ void velocity_gradients(const ShapeCache& shapes, const double* v, std::size_t n
 // in order, so all the routines above (and ShapeCache::rebuild's) give bitwise the same values.
 inline void point_velocity_gradients(const std::int32_t* row, std::int64_t count, const double* grad,
                                      const double* hess, const double* v, std::int64_t i, double* L, double* G) {
-  double g[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-  // t[a][m] = sum_J (v_J - v_I)_a Psi^(m)_J over the 6 symmetric pairs m; dv_a,c/dx_d = t[a][sym(d, c)]
-  // (the same sums as accumulating the 27 entries directly, a third of the work).
-  double t[3][6] = {};
-  const double* vi = v + 3 * i;
-  for (std::int64_t k = 0; k < count; ++k) {
-    const double* vj = v + 3 * static_cast<std::int64_t>(row[k]);
-    const double dv[3] = {vj[0] - vi[0], vj[1] - vi[1], vj[2] - vi[2]};  // sum_J grad Psi_J = 0, etc.
-    const double* dpsi = grad + 3 * k;
-    // Streaming a stored table (not a row just built) is bound by the loads of grad and hess: ask for
-    // them 64 entries ahead (measured: +13 % on the paper disc; 32 or 128 ahead the same).
-    __builtin_prefetch(grad + 3 * k + 192);
-    if (hess) __builtin_prefetch(hess + 6 * k + 384);
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) g[3 * r + c] += dv[r] * dpsi[c];
-    if (hess) {
-      const double* h2 = hess + 6 * k;
-      for (int a = 0; a < 3; ++a)
-        for (int m = 0; m < 6; ++m) t[a][m] += dv[a] * h2[m];
-    }
-  }
-  if (L)
-    for (int m = 0; m < 9; ++m) L[m] = g[m];
-  if (G)
-    for (int d = 0; d < 3; ++d)
-      for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c) G[9 * d + 3 * a + c] = t[a][sym_index(d, c)];
+  row_velocity_gradients(row, count, grad, G ? hess : nullptr, v, i, L, G);  // (row_simd.hpp)
 }
 
 }  // namespace uhpc::macro

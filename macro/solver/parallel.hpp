@@ -7,4 +7,9 @@
 
 namespace uhpc::macro {
 constexpr std::int64_t kParallelMinParticles = 4096;
+// Loops over RK rows are split in static chunks of this many rows, dealt to the threads in turn: the
+// costly rows (rebuilt lazy rows, contact, fragments) cluster in index ranges, which a plain static
+// split would hand to one thread. A fixed chunk keeps the work (and each thread's sums) deterministic;
+// with one thread the rows are taken in order as before.
+constexpr std::int64_t kRowChunk = 1024;
 }  // namespace uhpc::macro

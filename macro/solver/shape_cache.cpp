@@ -62,7 +62,7 @@ bool ShapeCache::prepare(const rk::Options& options, const double* x, const doub
     bool fresh = lazy_size_.size() != n || (second != nullptr) != (second_ != nullptr);
     if (!fresh) {
       bool overflow = false;
-#pragma omp parallel for schedule(static) reduction(|| : overflow) if (nq >= kParallelMinParticles)
+#pragma omp parallel for schedule(static, kRowChunk) reduction(|| : overflow) if (nq >= kParallelMinParticles)
       for (std::int64_t p = 0; p < nq; ++p) {
         const bool due = row_due(p);
         due_[p] = due ? 1 : 0;
@@ -237,7 +237,7 @@ bool ShapeCache::update_candidates(const double* x, const double* support_radius
   if (!valid) {
     inflated_support.resize(n);
     for (std::size_t i = 0; i < n; ++i) inflated_support[i] = support_radius[i] + s;
-    nodes_covering<3>(x, n, x, inflated_support.data(), n, candidates, workspace);
+    candidate_search.search(x, support_radius, inflated_support.data(), s, n, candidates, workspace);
     candidate_x.assign(x, x + 3 * n);
     candidate_support.assign(support_radius, support_radius + n);
     const std::size_t entries = candidates.indices.size();

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "solver/second_gradients.hpp"
+#include "solver/verlet_candidates.hpp"
 #include "uhpc/neighbour_search.hpp"
 #include "uhpc/rk_shape.hpp"
 
@@ -41,12 +42,16 @@ struct ShapeCache {
   // Verlet skin (exact): > 0 keeps candidate lists searched with radii a_J + s, s = skin * min_J a_J,
   // and only filters them (|x_L - x_J| < a_J, the search's own test, in the same ascending order) while
   // no point has moved more than s/2 from where the candidates were searched: the lists are then
-  // identical to a fresh search. 0: a fresh cell-list search at every rebuild.
+  // identical to a fresh search. 0: a fresh cell-list search at every rebuild. The candidates are
+  // themselves found without a full search where possible (candidate_search, below).
   double skin = 0.0;
   NeighbourList candidates;
   std::vector<double> candidate_x, candidate_support, inflated_support;
   std::vector<std::int32_t> filtered;
   std::size_t searches = 0, reuses = 0;  // rebuilds that searched / that reused the candidates
+  // The searches of the candidates: a full search only now and then, otherwise only the particles that
+  // moved far (verlet_candidates.hpp); the same lists.
+  VerletCandidates candidate_search;
   // Lazy rows (reuse_tolerance > 0; needs skin > 0). A row is rebuilt only when its neighbourhood has
   // changed shape since it was built: some node J of it moved relative to the point L by more than
   // reuse_tolerance * a_L, or a candidate that was outside the support has come in deeper than that.

@@ -118,7 +118,7 @@ StressUpdateSums update_stresses(Block& block, Particles& p, double dt, const Bu
 #pragma omp parallel reduction(+ : work, visc, stab) reduction(min : dt_min) reduction(max : inverted) if (n >= kParallelMinParticles)
   {
     StressUpdateSums sums;
-#pragma omp for schedule(static)
+#pragma omp for schedule(static, kRowChunk)
     for (std::int64_t i = 0; i < n; ++i) update_stress(block, p, i, dt, viscosity, sums);
     add_sums(sums, work, visc, stab, dt_min, inverted);
   }
