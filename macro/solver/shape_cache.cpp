@@ -262,19 +262,8 @@ void ShapeCache::find_with_skin(const double* x, const double* support_radius, s
   support.offsets[0] = 0;
 #pragma omp parallel for schedule(static) if (nq >= kParallelMinParticles)
   for (std::int64_t i = 0; i < nq; ++i) {
-    const double* xi = x + 3 * i;
-    const std::int32_t* row = candidates.row(i);
-    const std::int64_t count = candidates.count(i);
-    std::int32_t* out = filtered.data() + candidates.begin(i);
-    std::int64_t kept = 0;
-    for (std::int64_t k = 0; k < count; ++k) {
-      const std::int32_t j = row[k];
-      const double* xj = x + 3 * static_cast<std::int64_t>(j);
-      double d2 = 0.0;
-      for (int d = 0; d < 3; ++d) d2 += (xi[d] - xj[d]) * (xi[d] - xj[d]);
-      if (d2 < support_radius[j] * support_radius[j]) out[kept++] = j;
-    }
-    support.offsets[i + 1] = kept;
+    support.offsets[i + 1] = covering_nodes(x + 3 * i, candidates.row(i), candidates.count(i), x, support_radius,
+                                            filtered.data() + candidates.begin(i), [](std::int32_t) { return true; });
   }
   for (std::size_t i = 0; i < n; ++i) support.offsets[i + 1] += support.offsets[i];
   const std::size_t entries = static_cast<std::size_t>(support.offsets[n]);

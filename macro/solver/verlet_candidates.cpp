@@ -104,19 +104,9 @@ void VerletCandidates::search(const double* x, const double* support, const doub
       out.offsets[p + 1] = fast_rows_.count(static_cast<std::size_t>(fast_index_[p]));
       continue;
     }
-    const double* xp = x + 3 * p;
-    const std::int32_t* row = outer_.row(p);
-    const std::int64_t count = outer_.count(p);
-    std::int32_t* kept = filtered_.data() + outer_.begin(p);
-    std::int64_t m = 0;
-    for (std::int64_t k = 0; k < count; ++k) {
-      const std::int32_t j = row[k];
-      const double* xj = x + 3 * static_cast<std::int64_t>(j);
-      double d2 = 0.0;
-      for (int d = 0; d < 3; ++d) d2 += (xp[d] - xj[d]) * (xp[d] - xj[d]);
-      const bool slow = nf == 0 || fast_index_[j] < 0;
-      if (slow && d2 < radius[j] * radius[j]) kept[m++] = j;
-    }
+    const std::int64_t m = covering_nodes(x + 3 * p, outer_.row(p), outer_.count(p), x, radius,
+                                          filtered_.data() + outer_.begin(p),
+                                          [&](std::int32_t j) { return nf == 0 || fast_index_[j] < 0; });  // slow nodes
     out.offsets[p + 1] = m + (nf > 0 ? fast_covering_.count(static_cast<std::size_t>(p)) : 0);
   }
   // (filtered rows hold m entries: the row length minus the fast nodes)

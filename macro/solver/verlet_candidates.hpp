@@ -17,6 +17,23 @@
 
 namespace uhpc::macro {
 
+// The nodes j of `row` (in its order) whose support covers the point xp, |xp - x_j|^2 < radius[j]^2 (the
+// search's own test, the axes summed in order) and for which accept(j) holds, written to `kept`;
+// returns how many. The one filter of candidate rows, shared by ShapeCache and VerletCandidates.
+template <class Accept>
+inline std::int64_t covering_nodes(const double* xp, const std::int32_t* row, std::int64_t count, const double* x,
+                                   const double* radius, std::int32_t* kept, Accept accept) {
+  std::int64_t m = 0;
+  for (std::int64_t k = 0; k < count; ++k) {
+    const std::int32_t j = row[k];
+    const double* xj = x + 3 * static_cast<std::int64_t>(j);
+    double d2 = 0.0;
+    for (int d = 0; d < 3; ++d) d2 += (xp[d] - xj[d]) * (xp[d] - xj[d]);
+    if (d2 < radius[j] * radius[j] && accept(j)) kept[m++] = j;
+  }
+  return m;
+}
+
 class VerletCandidates {
  public:
   // `out`: for every point p of the n points x (also the nodes), every j with |x_p - x_j| < radius[j],
