@@ -17,6 +17,8 @@
 //
 // --set microstructure.<key>=... overrides data/microstructure.json (Burr law, porosity, matrix);
 // for generate-ensemble, elastic, run and ensemble, --set cell.<key>=... overrides the cell config.
+#include <malloc.h>
+
 #include <chrono>
 #include <filesystem>
 #include <string>
@@ -31,7 +33,23 @@
 #include "uhpc/cli.hpp"
 #include "uhpc/logging.hpp"
 
+namespace {
+
+// A crack analysis factorizes a new tangent hundreds of times per cell; UMFPACK allocates its numeric
+// object (tens to hundreds of MB) each time, which glibc serves by fresh mmap: page faults and zeroed
+// pages on every factorization (833k minor faults and 7 % of the CPU time on a 3.0 mm cell). Serving
+// every block from one heap that is never trimmed reuses the same pages instead (48k faults). One arena
+// for all threads: the ensemble's worker threads would otherwise get arenas whose large blocks are mmaps.
+void keep_freed_memory_for_reuse() {
+  mallopt(M_ARENA_MAX, 1);
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, -1);  // -1: as large as possible (never trim)
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  keep_freed_memory_for_reuse();
   CLI::App app{"2D porous UHPC microcells: Burr-sampled pores, crack seeds, gmsh discretization.", "uhpc-micro"};
   app.require_subcommand(1);
   std::string config_path, out;
