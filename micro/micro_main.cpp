@@ -38,7 +38,7 @@ namespace {
 // A crack analysis factorizes a new tangent hundreds of times per cell; UMFPACK allocates its numeric
 // object (tens to hundreds of MB) each time, which glibc serves by fresh mmap: page faults and zeroed
 // pages on every factorization (833k minor faults and 7 % of the CPU time on a 3.0 mm cell). Serving
-// every block from one heap that is never trimmed reuses the same pages instead (48k faults). One arena
+// every block from one heap that is never trimmed reuses the same pages instead (47k faults). One arena
 // for all threads: the ensemble's worker threads would otherwise get arenas whose large blocks are mmaps.
 void keep_freed_memory_for_reuse() {
   mallopt(M_ARENA_MAX, 1);

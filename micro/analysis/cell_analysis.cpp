@@ -507,10 +507,10 @@ std::string Analysis::relax(double dlambda, int& iterations) {
     // its opening uncertain by far more than `settled`, and at a contact kink the pseudo-steps then
     // chatter around the equilibrium forever (6.5 mm #3 of the 20-cell study: 1e-10 m to and fro for
     // 2000 steps). So the viscous forces of the step, k_v (w - w_previous) assembled, are also
-    // compared with the tolerance: below viscous_fraction of it, the step moved by noise.
+    // compared with the tolerance: below kViscousFraction of it, the step moved by noise.
     Eigen::VectorXd rv;
-    stage_.sys->evaluate(d_, lambda_, law_, flat_history(), false, rv, eval_, &viscosity);
-    stage_.sys->evaluate(d_, lambda_, law_, flat_history(), false, r, eval_);
+    stage_.sys->evaluate(d_, lambda_, law_, settled_history, false, rv, eval_, &viscosity);
+    stage_.sys->evaluate(d_, lambda_, law_, settled_history, false, r, eval_);
     const double viscous = (rv - r).norm();
     reference = eval_.opening;
     if (n.iterations <= o_.easy_iterations) kv = std::max(kv / o_.step_growth, 1e-2 * softening);
