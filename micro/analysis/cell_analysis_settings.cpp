@@ -35,6 +35,10 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
     o.rk.correction = c.choice("quadrature.correction", {"vci", "none"}) == "vci" ? IntegrationCorrection::Vci
                                                                                  : IntegrationCorrection::None;
   opt(c, "quadrature.crack_points", o.enrichment.crack_points, Range::closed(1, 5));
+  if (c.has("quadrature.cracked_correction"))
+    o.enrichment.cracked_correction = c.choice("quadrature.cracked_correction", {"vci", "none"}) == "none"
+                                          ? IntegrationCorrection::None
+                                          : IntegrationCorrection::Vci;
   opt(c, "essential_bc.nitsche_factor", o.nitsche_factor, Range::positive());
   if (c.has("enrichment.tip")) c.choice("enrichment.tip", {"ramped"});
   opt(c, "enrichment.min_ratio", o.enrichment.min_enrichment_ratio, Range{0.0, 0.1, false, true});

@@ -290,7 +290,8 @@ EnrichedModel build_enriched_model(const RkGalerkinModel& base, const CellDiscre
         }
     q.end = static_cast<std::int64_t>(em.jump_node.size());
   }
-  if (base.options.correction == IntegrationCorrection::Vci) apply_vci(em, base);
+  const bool cracked = std::any_of(cracks.begin(), cracks.end(), [](const Crack& c) { return c.active > 0; });
+  if ((cracked ? options.cracked_correction : base.options.correction) == IntegrationCorrection::Vci) apply_vci(em, base);
   return em;
 }
 

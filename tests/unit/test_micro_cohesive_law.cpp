@@ -226,13 +226,18 @@ TEST(microCellAnalysisSettings, PathEndFollowsTheStrainGridAndNeverStopsShortOfI
             "would not cover the grid (leave it out to stop at the grid's end)");
 }
 
-TEST(microCellAnalysisSettings, GrowthFallbackAndLineSearch) {
+TEST(microCellAnalysisSettings, GrowthFallbackLineSearchAndCrackedCorrection) {
   const CellAnalysisOptions d = read(R"({"analysis": {}})");
   EXPECT_EQ(d.growth_fallback, GrowthFallback::UnloadAndRegrow);
   EXPECT_EQ(d.line_search_halvings, 4);
   const CellAnalysisOptions o = read(R"({"analysis": {"growth": {"fallback": "fail"}, "newton": {"line_search_halvings": 0}}})");
   EXPECT_EQ(o.growth_fallback, GrowthFallback::Fail);
   EXPECT_EQ(o.line_search_halvings, 0);
+  EXPECT_EQ(d.enrichment.cracked_correction, IntegrationCorrection::Vci);
+  EXPECT_EQ(read(R"({"analysis": {"quadrature": {"cracked_correction": "none"}}})").enrichment.cracked_correction,
+            IntegrationCorrection::None);
+  EXPECT_EQ(error(R"({"analysis": {"quadrature": {"cracked_correction": "off"}}})"),
+            "run.json: key 'analysis.quadrature.cracked_correction': value 'off' is not one of: vci, none");
   EXPECT_EQ(error(R"({"analysis": {"growth": {"fallback": "retry"}}})"),
             "run.json: key 'analysis.growth.fallback': value 'retry' is not one of: unload_and_regrow, fail, "
             "always_unload, relax");
