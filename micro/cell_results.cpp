@@ -96,8 +96,8 @@ CellResponse run_analyzer(const CellAnalyzer& analyzer, const CellJob& job, cons
 }
 
 std::string cell_hash(const CellJob& job) {
-  return fnv1a64_hex(fmt::format("{}|{:.17g}|{}|{}|{:.17g}", job.settings.config_hash, job.size_m, job.seed,
-                                 job.analysis.dump(), job.curve_end_strain));
+  return fnv1a64_hex(fmt::format("{}|{:.17g}|{}|{}|{:.17g}|r{}", job.settings.config_hash, job.size_m, job.seed,
+                                 job.analysis.dump(), job.curve_end_strain, kFractureSolverRevision));
 }
 
 namespace {

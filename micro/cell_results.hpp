@@ -61,7 +61,14 @@ void prepare_cell(CellJob& job, const std::string& program);
 // never stops an ensemble. A Failed response without a diagnostic gets one.
 CellResponse run_analyzer(const CellAnalyzer& analyzer, const CellJob& job, const StateObserver& observe);
 
-// What identifies a cell's solve: the cell settings, size, seed and the analysis section.
+// The revision of the fracture solver's results. Bump it with every change of the solver or of its
+// defaults that changes a cell's result under the same configuration: it enters cell_hash, so a
+// resumed ensemble recomputes such cells instead of reloading results of another solver.
+// 2: quadrature.cracked_correction = none by default (was VCI).
+inline constexpr int kFractureSolverRevision = 2;
+
+// What identifies a cell's solve: the cell settings, size, seed, the analysis section and
+// kFractureSolverRevision.
 std::string cell_hash(const CellJob& job);
 
 // Writes DIR/curves.h5 then DIR/summary.json (each atomically; summary.json last, so its presence

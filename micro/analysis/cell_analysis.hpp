@@ -15,7 +15,8 @@
 //     sliver carrying ~10 % of the peak long after it; in Mode I the sliding energy released when a
 //     tip ramp is removed is booked as dissipation without matching work, so on porous cells the
 //     energy balance holds up to the peak but not far into the tail (the strip and one-pore tests
-//     balance within 1 %). On porous cells the VCI-corrected operator of the cracked model can lose
+//     balance within 1 %). On porous cells the VCI-corrected operator of the cracked model
+//     (quadrature.cracked_correction = vci; the default is plain Gauss, symmetric) can lose
 //     definiteness (FractureSystem::operator_energy parts from the stored energy: 0.15 of the work on a
 //     3.0 mm cell); CellResponse::operator_energy_mismatch measures it and the ensemble leaves such
 //     cells out of its mean.

@@ -36,7 +36,7 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
                                                                                  : IntegrationCorrection::None;
   opt(c, "quadrature.crack_points", o.enrichment.crack_points, Range::closed(1, 5));
   if (c.has("quadrature.cracked_correction"))
-    o.enrichment.cracked_correction = c.choice("quadrature.cracked_correction", {"vci", "none"}) == "none"
+    o.enrichment.cracked_correction = c.choice("quadrature.cracked_correction", {"none", "vci"}) == "none"
                                           ? IntegrationCorrection::None
                                           : IntegrationCorrection::Vci;
   opt(c, "essential_bc.nitsche_factor", o.nitsche_factor, Range::positive());

@@ -8,7 +8,7 @@
 //   rk.support_factor, rk.kernel ("cubic_bspline" | "quartic_spline"), rk.derivatives ("direct" | "implicit"),
 //   quadrature.triangle_points (1, 3, 6, 7, 12), quadrature.segment_points (1..5),
 //   quadrature.correction ("vci" | "none"), quadrature.crack_points (1..5),
-//   quadrature.cracked_correction ("vci" | "none"),
+//   quadrature.cracked_correction ("none" | "vci"),
 //   essential_bc.nitsche_factor,
 //   enrichment.tip ("ramped"), enrichment.min_ratio,
 //   cohesive.activation_ratio (0, 0.1], cohesive.contact_penalty_ratio, cohesive.residual_stiffness_ratio

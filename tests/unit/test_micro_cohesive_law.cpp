@@ -233,11 +233,11 @@ TEST(microCellAnalysisSettings, GrowthFallbackLineSearchAndCrackedCorrection) {
   const CellAnalysisOptions o = read(R"({"analysis": {"growth": {"fallback": "fail"}, "newton": {"line_search_halvings": 0}}})");
   EXPECT_EQ(o.growth_fallback, GrowthFallback::Fail);
   EXPECT_EQ(o.line_search_halvings, 0);
-  EXPECT_EQ(d.enrichment.cracked_correction, IntegrationCorrection::Vci);
-  EXPECT_EQ(read(R"({"analysis": {"quadrature": {"cracked_correction": "none"}}})").enrichment.cracked_correction,
-            IntegrationCorrection::None);
+  EXPECT_EQ(d.enrichment.cracked_correction, IntegrationCorrection::None);
+  EXPECT_EQ(read(R"({"analysis": {"quadrature": {"cracked_correction": "vci"}}})").enrichment.cracked_correction,
+            IntegrationCorrection::Vci);
   EXPECT_EQ(error(R"({"analysis": {"quadrature": {"cracked_correction": "off"}}})"),
-            "run.json: key 'analysis.quadrature.cracked_correction': value 'off' is not one of: vci, none");
+            "run.json: key 'analysis.quadrature.cracked_correction': value 'off' is not one of: none, vci");
   EXPECT_EQ(error(R"({"analysis": {"growth": {"fallback": "retry"}}})"),
             "run.json: key 'analysis.growth.fallback': value 'retry' is not one of: unload_and_regrow, fail, "
             "always_unload, relax");
