@@ -201,6 +201,8 @@ nlohmann::json cell_summary_json(const CellJob& job, const CellResult& r, const 
   j["growth_unloads"] = resp.growth_unloads;
   j["jumps"] = resp.jumps;
   j["factorizations"] = resp.factorizations;
+  j["krylov_corrections"] = resp.krylov_corrections;
+  j["krylov_products"] = resp.krylov_products;
   j["operator_energy_mismatch"] = resp.operator_energy_mismatch;
   j["wall_s"] = resp.wall_s;
   j["post_options"] = post_options_json(o);
@@ -280,6 +282,8 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
     r.growth_unloads = j.at("growth_unloads").get<std::size_t>();
     r.jumps = j.at("jumps").get<std::size_t>();
     r.factorizations = j.at("factorizations").get<std::size_t>();
+    r.krylov_corrections = j.value("krylov_corrections", std::size_t{0});  // absent before revision 3
+    r.krylov_products = j.value("krylov_products", std::size_t{0});
     r.operator_energy_mismatch = j.at("operator_energy_mismatch").get<double>();
     r.wall_s = j.at("wall_s").get<double>();
     const std::lock_guard<std::mutex> lock(hdf5_mutex());

@@ -65,7 +65,9 @@ CellResponse run_analyzer(const CellAnalyzer& analyzer, const CellJob& job, cons
 // defaults that changes a cell's result under the same configuration: it enters cell_hash, so a
 // resumed ensemble recomputes such cells instead of reloading results of another solver.
 // 2: quadrature.cracked_correction = none by default (was VCI).
-inline constexpr int kFractureSolverRevision = 2;
+// 3: Newton corrections by GMRES with an earlier factorization (newton.krylov_iterations = 16): the
+//    same path to within the Newton tolerance, but not bit for bit.
+inline constexpr int kFractureSolverRevision = 3;
 
 // What identifies a cell's solve: the cell settings, size, seed, the analysis section and
 // kFractureSolverRevision.

@@ -10,6 +10,7 @@
 
 #include "cohesive_assembly.hpp"
 #include "field_transfer.hpp"
+#include "preconditioned_gmres.hpp"
 #include "uniaxial_cell.hpp"
 
 namespace uhpc::micro {
@@ -74,8 +75,11 @@ class Analysis {
   long stage_id_ = 0;
   std::unique_ptr<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>> lu_;
   long lu_key_ = -1;
-  Eigen::SparseMatrix<double> J_;  // the bordered tangent lu_ factorized
-  std::size_t factorizations_ = 0;
+  Eigen::SparseMatrix<double> J_;      // the bordered tangent lu_ factorized
+  Eigen::SparseMatrix<double> J_new_;  // the current one, when GMRES solves it with lu_
+  double lu_row_scale_ = 1.0, new_row_scale_ = 1.0;  // the constraint row's scale in J_, J_new_
+  bool last_by_krylov_ = false;  // the last correction solved J_new_ by GMRES (J_ is older)
+  std::size_t factorizations_ = 0, krylov_corrections_ = 0, krylov_products_ = 0;
   Eigen::VectorXd d_;
   double lambda_ = 0.0;
   double scale_ = 1.0;  // residual scale
@@ -282,13 +286,37 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
     const long key = viscosity          ? -(1L << 40) - stage_id_
                      : hold == Hold::Zone ? -2 - zone_id_
                                           : 2 * stage_id_ + (hold == Hold::Lambda ? 0 : 1);
-    // The first iteration of a path step solves with the factorization of the last iteration before
-    // (same stage and constraint): its tangent has the points that were softening still softening,
-    // which is the better predictor, and the fresh tangent at the converged state would put them on
-    // their secants (their history has just been committed). Every later iteration is full Newton.
+    // The first iteration of a path step solves with the tangent of the last iteration before (same
+    // stage and constraint): it has the points that were softening still softening, which is the
+    // better predictor, and the fresh tangent at the converged state would put them on their secants
+    // (their history has just been committed). Every later iteration is full Newton.
     const bool reuse = it == 0 && lu_ && key == lu_key_;
+    // GMRES preconditioned with the factorization at hand (same pattern) solves a tangent that has
+    // changed at cohesive points only since; converged to a hundredth of the tolerance, Newton cannot
+    // tell its correction from the direct one. Otherwise that tangent is factorized.
+    const bool krylov = lu_ && key == lu_key_ && o_.krylov_iterations > 0 && (!reuse || last_by_krylov_);
+    // The constraint row is scaled so that its tolerance is the residual's (GMRES minimizes one norm
+    // over both); a reused tangent keeps the scale it was made with.
     if (!reuse) {
-      J_ = hold == Hold::Lambda ? sys.bordered(zero, 1.0) : sys.bordered(g, 0.0);
+      new_row_scale_ = tolerance / cscale;
+      J_new_ = hold == Hold::Lambda ? sys.bordered(zero, new_row_scale_) : sys.bordered(g * new_row_scale_, 0.0);
+    }
+    const bool on_new = !reuse || last_by_krylov_;  // the tangent is J_new_, else J_ (factorized)
+    rhs.head(N) = -r;
+    rhs[N] = -cres * (on_new ? new_row_scale_ : lu_row_scale_);
+    Eigen::VectorXd x;
+    bool solved = false;
+    if (krylov) {
+      const GmresResult k = preconditioned_gmres(
+          J_new_, [this](const Eigen::VectorXd& v, Eigen::VectorXd& z) { z = lu_->solve(v); }, rhs,
+          std::max(0.01 * tolerance, 1e-13 * rhs.norm()), o_.krylov_iterations, x);
+      krylov_products_ += static_cast<std::size_t>(k.iterations);
+      solved = k.converged && x.allFinite();
+      if (solved) ++krylov_corrections_;
+    }
+    if (!solved && on_new) {
+      std::swap(J_, J_new_);
+      lu_row_scale_ = new_row_scale_;
       if (!lu_ || key != lu_key_) {
         lu_ = std::make_unique<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>>();
         // No iterative refinement: Newton's own iterations correct the residual; refinement would
@@ -305,10 +333,8 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
         return res;
       }
     }
-    Eigen::UmfPackLU<Eigen::SparseMatrix<double>>& lu = *lu_;
-    rhs.head(N) = -r;
-    rhs[N] = -cres;
-    const Eigen::VectorXd x = lu.solve(rhs);
+    if (!solved) x = lu_->solve(rhs);
+    last_by_krylov_ = solved;
     if (!x.allFinite()) {
       res.why = "UMFPACK: non-finite correction";
       return res;
@@ -856,6 +882,8 @@ CellResponse Analysis::run(const FractureObserver& observer) {
   out.growth_unloads = unloads_;
   out.jumps = jumps_;
   out.factorizations = factorizations_;
+  out.krylov_corrections = krylov_corrections_;
+  out.krylov_products = krylov_products_;
   out.operator_energy_mismatch = operator_mismatch_;
   return out;
 }

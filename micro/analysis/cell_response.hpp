@@ -47,6 +47,8 @@ struct CellResponse {
   std::size_t growth_unloads = 0;    // growth events passed by unloading to zero (GrowthFallback)
   std::size_t jumps = 0;             // jumps taken by relaxation (JumpFallback::Relax, GrowthFallback::Relax)
   std::size_t factorizations = 0;    // numeric LU factorizations of the Newton matrix (the main cost)
+  std::size_t krylov_corrections = 0;  // Newton corrections solved by GMRES with an earlier factorization
+  std::size_t krylov_products = 0;     // GMRES iterations over all of them (one triangular solve each)
   // Largest |operator energy - (bulk + boundary energy)| over the states, relative to the largest
   // external work so far (FractureSystem::operator_energy): 1e-2 on the elastic branch (VCI's
   // asymmetry); far above that, the cracked operator has a spurious soft mode and the path is suspect.

@@ -10,6 +10,7 @@
 //  BM_Solve: one solve with that factorization.
 //  BM_ElasticCell: uniaxial_elastic_response (model, assembly, solve, reactions and energy), i.e.
 //    `uhpc-micro elastic` without generating, meshing and writing files.
+//  BM_CrackedCell/k: the crack analysis of the first 3.0 mm cell at 100 um, GMRES corrections on or off.
 // The settings, the cell, its mesh (generated once, outside any timed loop and any OpenMP region:
 // gmsh is global state), the model, the system and the factorization are built once, on first use,
 // and shared; nothing of it is timed except by its own benchmark. peak_rss_MiB is the process's peak
@@ -31,6 +32,8 @@
 #include <Eigen/UmfPackSupport>
 #include <nlohmann/json.hpp>
 
+#include "cell_analysis.hpp"
+#include "cell_analysis_settings.hpp"
 #include "cell_generator.hpp"
 #include "elastic_settings.hpp"
 #include "stiffness_assembly.hpp"
@@ -44,22 +47,23 @@ using SparseMatrix = Eigen::SparseMatrix<double>;
 
 constexpr double kCellSize_m = 0.0065;
 
-// The shipped elastic settings for the first 6.5 mm cell of the analysis ensemble.
-ElasticSettings load_settings() {
+// The shipped elastic settings for the first cell of `size_m` of the analysis ensemble, with
+// `overrides` on top.
+ElasticSettings load_settings(double size_m, std::vector<std::string> overrides = {}) {
   const uhpc::Config ensemble = uhpc::Config::load(UHPC_DATA_DIR "/micro_analysis_ensemble.json");
   const std::vector<double> sizes = ensemble.numbers("cell_sizes_m");
   std::uint64_t index = 0;
-  while (index < sizes.size() && std::abs(sizes[index] - kCellSize_m) > 1e-9) ++index;
-  if (index == sizes.size()) throw std::runtime_error("micro_analysis_ensemble.json: no 6.5 mm cell size");
+  while (index < sizes.size() && std::abs(sizes[index] - size_m) > 1e-9) ++index;
+  if (index == sizes.size()) throw std::runtime_error("micro_analysis_ensemble.json: no cell size " + std::to_string(size_m));
   const auto base_seed = static_cast<std::uint64_t>(ensemble.integer("base_seed"));
   const std::uint64_t seed = derive_cell_seed(base_seed, index, 0);
-  return load_elastic_settings(UHPC_DATA_DIR "/micro_elastic.json",
-                               {"cell.cell_size_m=" + nlohmann::json(kCellSize_m).dump(),
-                                "cell.seed=" + std::to_string(seed)});
+  overrides.push_back("cell.cell_size_m=" + nlohmann::json(size_m).dump());
+  overrides.push_back("cell.seed=" + std::to_string(seed));
+  return load_elastic_settings(UHPC_DATA_DIR "/micro_elastic.json", overrides);
 }
 
 const ElasticSettings& settings() {
-  static const ElasticSettings s = load_settings();
+  static const ElasticSettings s = load_settings(kCellSize_m);
   return s;
 }
 
@@ -257,6 +261,31 @@ void BM_ElasticCell(benchmark::State& state) {
   state.counters["peak_rss_MiB"] = peak_rss_mib();
 }
 BENCHMARK(BM_ElasticCell)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The crack analysis of the first 3.0 mm cell at 100 um to e = 1.5e-3 (`uhpc-micro run` with
+// data/micro_run.json, without the files), with the Newton corrections by GMRES on an earlier
+// factorization (arg: newton.krylov_iterations; 0: a factorization per iteration). The two args run
+// back to back: compare their ratio.
+void BM_CrackedCell(benchmark::State& state) {
+  static const ElasticSettings s = load_settings(0.003, {"cell.discretization.nominal_spacing_m=1e-4"});
+  static const GeneratedCell c = generate_cell(s.cell.cell, s.cell.seed);
+  static const CellDiscretization m = mesh_cell(c.geometry, s.cell.mesh);
+  const CellMaterial material = read_cell_material(uhpc::Config::load(s.cell.microstructure_file).section("matrix"));
+  CellAnalysisOptions o;
+  o.max_strain = 1.5e-3;  // data/micro_run.json's strain grid end
+  o.krylov_iterations = static_cast<int>(state.range(0));
+  CellResponse r;
+  for (auto _ : state) r = analyze_cell(c.geometry, m, material, o);
+  state.SetLabel(to_string(r.status));
+  double peak = 0.0;
+  for (const CellState& x : r.states) peak = std::max(peak, x.sigma_bar_Pa);
+  state.counters["dofs"] = static_cast<double>(r.dofs);
+  state.counters["peak_MPa"] = peak * 1e-6;
+  state.counters["factorizations"] = static_cast<double>(r.factorizations);
+  state.counters["krylov_products"] = static_cast<double>(r.krylov_products);
+  state.counters["peak_rss_MiB"] = peak_rss_mib();
+}
+BENCHMARK(BM_CrackedCell)->Arg(0)->Arg(16)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
