@@ -67,8 +67,8 @@ struct CohesivePoint {
 // reload 1/2 p.K_lin.p along Newton's directions fell to -1.3e3 where the bulk energy of the same p
 // was +18, and Newton found no equilibrium at any load scale); with None the four cells of the
 // 24-cell study that failed or broke a check finish clean. Its known weakness: the long strip under
-// displacement control no longer re-equilibrates after growth at its peak (4 growth unloads, then
-// "separated" on a reload with 0.90 G_f L dissipated), so that test keeps Vci.
+// displacement control no longer re-equilibrates after growth at its peak (growth unloads, then a jump
+// below the peak that releases 10 % too little; micro/README.md), so that test keeps Vci.
 struct EnrichmentOptions {
   double min_enrichment_ratio = 1e-6;  // [choice] see above
   int crack_points = 4;                // Gauss points per crack segment (1..5)

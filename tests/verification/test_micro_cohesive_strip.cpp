@@ -243,8 +243,8 @@ TEST(microCohesiveStrip, LongStripUnderDisplacementControlJumpsToSeparation) {
   CellAnalysisOptions o;
   o.control = PathControl::Displacement;
   // The jump is verified on VCI's cracked operator: with the default plain Gauss (None) the growth at
-  // this strip's peak does not re-equilibrate under displacement control and the strip goes through 4
-  // growth unloads to a false separation on a reload (0.90 G_f L dissipated); a known weakness of None
+  // this strip's peak does not re-equilibrate under displacement control; growth unloads follow and the
+  // jump comes below the peak, releasing 10 % too little (micro/README.md); a known weakness of None
   // (enrichment.hpp), outside the crack-opening path the analyses use.
   o.enrichment.cracked_correction = IntegrationCorrection::Vci;
   o.min_strain_increment = 1e-8;  // the halvings before the jump are the slow part of this test
