@@ -243,6 +243,13 @@ TEST(microCellAnalysisSettings, GrowthFallbackLineSearchAndCrackedCorrection) {
             "always_unload, relax");
 }
 
+TEST(microCellAnalysisSettings, KrylovIterations) {
+  EXPECT_EQ(read(R"({"analysis": {}})").krylov_iterations, 16);
+  EXPECT_EQ(read(R"({"analysis": {"newton": {"krylov_iterations": 0}}})").krylov_iterations, 0);
+  EXPECT_EQ(error(R"({"analysis": {"newton": {"krylov_iterations": -1}}})"),
+            "run.json: key 'analysis.newton.krylov_iterations': value -1 is out of range, must be in [0, 200]");
+}
+
 TEST(microCellAnalysisSettings, ProcessZoneControlAndEnergyTolerance) {
   EXPECT_EQ(read(R"({"analysis": {}})").zone_control, ZoneControl::Fallback);
   EXPECT_DOUBLE_EQ(read(R"({"analysis": {}})").energy_tolerance, 0.05);
