@@ -102,6 +102,27 @@ std::vector<std::string> take_cell_overrides(std::vector<std::string>& overrides
   return cell;
 }
 
+namespace {
+
+void flatten(const nlohmann::json& j, const std::string& path, std::vector<std::string>& out) {
+  if (j.is_object()) {
+    for (const auto& [key, value] : j.items()) flatten(value, path.empty() ? key : path + "." + key, out);
+  } else {
+    out.push_back(path + "=" + j.dump());
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> config_cell_overrides(const Config& cfg) {
+  std::vector<std::string> out;
+  if (!cfg.has("cell_overrides")) return out;
+  const Config section = cfg.section("cell_overrides");
+  cfg.accept_any("cell_overrides");
+  flatten(section.json(), "", out);
+  return out;
+}
+
 CellSettings load_cell_settings(const std::string& cell_config_path, std::vector<std::string> overrides,
                                 double size_override_m, const std::uint64_t* seed_override) {
   const std::vector<std::string> micro_overrides = take_prefixed_overrides(overrides, "microstructure");

@@ -20,9 +20,11 @@ int run_cell_command(const std::string& config_path, const std::vector<std::stri
                      const fs::path& out, const CellAnalyzerFactory& factory) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> overrides = overrides_in;
-  const std::vector<std::string> cell_overrides = take_cell_overrides(overrides);
+  const std::vector<std::string> cli_cell_overrides = take_cell_overrides(overrides);
   const Config cfg = Config::load(config_path, overrides);
   cfg.accept_any("notes");
+  std::vector<std::string> cell_overrides = config_cell_overrides(cfg);
+  cell_overrides.insert(cell_overrides.end(), cli_cell_overrides.begin(), cli_cell_overrides.end());
   std::string cell_config = cfg.text("cell_config");
   if (fs::path(cell_config).is_relative()) cell_config = (fs::path(cfg.source()).parent_path() / cell_config).string();
   const PostOptions post = read_post_options(cfg);

@@ -202,6 +202,33 @@ TEST_F(MicroRunCommands, BadConfigExitsTwoWithOneLineNamingFileAndKey) {
   EXPECT_FALSE(fs::exists(dir_ / "bad" / "summary.json"));
 }
 
+// The config's "cell_overrides" set cell config keys for the command's cells, exactly as --set cell.<key>
+// would (same mesh, same cell hash); --set still wins; a misspelt key is an error naming the cell file.
+TEST_F(MicroRunCommands, ConfigCellOverridesActLikeSetAndSetWins) {
+  const nlohmann::json coarse = {{"discretization", {{"nominal_spacing_m", 2e-4}}}};
+  const fs::path with = write_config("with.json", {{"cell_overrides", coarse}});
+  const fs::path without = run_config();
+  ASSERT_EQ(run(with, {}, dir_ / "a"), kExitOk);
+  ASSERT_EQ(run(without, {"cell.discretization.nominal_spacing_m=2e-4"}, dir_ / "b"), kExitOk);
+  ASSERT_EQ(run(without, {}, dir_ / "c"), kExitOk);
+  ASSERT_EQ(run(with, {"cell.discretization.nominal_spacing_m=1.5e-4"}, dir_ / "d"), kExitOk);
+  ASSERT_EQ(run(without, {"cell.discretization.nominal_spacing_m=1.5e-4"}, dir_ / "e"), kExitOk);
+  const auto summary = [this](const char* d) { return read_json(dir_ / d / "summary.json"); };
+  EXPECT_EQ(summary("a")["nodes"], summary("b")["nodes"]);
+  EXPECT_EQ(summary("a")["cell_hash"], summary("b")["cell_hash"]);
+  EXPECT_LT(summary("a")["nodes"].get<int>(), summary("c")["nodes"].get<int>());  // coarser than the shipped mesh
+  EXPECT_EQ(summary("d")["cell_hash"], summary("e")["cell_hash"]);
+  EXPECT_NE(summary("d")["cell_hash"], summary("a")["cell_hash"]);
+
+  const fs::path bad = write_config("bad.json", {{"cell_overrides", {{"discretization", {{"nominal_spacing", 1e-4}}}}}});
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run(bad, {}, dir_ / "bad"), kExitBadInput);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            "error: " + std::string(UHPC_DATA_DIR) +
+                "/micro_cell.json: key 'discretization.nominal_spacing': unknown key (did you mean "
+                "'nominal_spacing_m'?)\n");
+}
+
 // A cell whose discrete operator parts from its stored energy is left out of the mean and listed;
 // a looser bound takes it back.
 TEST_F(MicroRunCommands, EnsembleLeavesSuspectCellsOutOfTheMean) {
