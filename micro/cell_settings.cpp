@@ -114,12 +114,14 @@ void flatten(const nlohmann::json& j, const std::string& path, std::vector<std::
 
 }  // namespace
 
-std::vector<std::string> config_cell_overrides(const Config& cfg) {
+std::vector<std::string> config_cell_overrides(const Config& cfg, const std::vector<std::string>& command_line) {
   std::vector<std::string> out;
-  if (!cfg.has("cell_overrides")) return out;
-  const Config section = cfg.section("cell_overrides");
-  cfg.accept_any("cell_overrides");
-  flatten(section.json(), "", out);
+  if (cfg.has("cell_overrides")) {
+    const Config section = cfg.section("cell_overrides");
+    cfg.accept_any("cell_overrides");
+    flatten(section.json(), "", out);
+  }
+  out.insert(out.end(), command_line.begin(), command_line.end());
   return out;
 }
 

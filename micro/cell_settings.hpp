@@ -34,9 +34,9 @@ std::vector<std::string> take_cell_overrides(std::vector<std::string>& overrides
 
 // The optional "cell_overrides" section of a command's config (`uhpc-micro run`, `ensemble`): cell
 // config keys the command sets for its cells, e.g. {"discretization": {"nominal_spacing_m": 1e-4}},
-// as "<key>=v" overrides (nested keys joined by dots). The command's --set cell.<key> come after them
-// and win. Marks the section read.
-std::vector<std::string> config_cell_overrides(const Config& cfg);
+// as "<key>=v" overrides (nested keys joined by dots), followed by `command_line` (the command's
+// take_cell_overrides), which therefore win. Marks the section read.
+std::vector<std::string> config_cell_overrides(const Config& cfg, const std::vector<std::string>& command_line);
 
 // Loads both files (overrides "microstructure.*" go to the microstructure file, the rest to the cell
 // config), validates everything and checks that a cell can be generated at all (cell too small,

@@ -97,8 +97,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   const std::vector<std::string> cli_cell_overrides = take_cell_overrides(overrides);
   const Config cfg = Config::load(config_path, overrides);
   const AnalysisEnsembleSettings e = read_settings(cfg);
-  std::vector<std::string> cell_overrides = config_cell_overrides(cfg);
-  cell_overrides.insert(cell_overrides.end(), cli_cell_overrides.begin(), cli_cell_overrides.end());
+  const std::vector<std::string> cell_overrides = config_cell_overrides(cfg, cli_cell_overrides);
   const Config analysis = cfg.section("analysis");
   const CellAnalyzer analyzer = factory(analysis, e.post.grid_max_strain);
   cfg.finish();

@@ -23,8 +23,7 @@ int run_cell_command(const std::string& config_path, const std::vector<std::stri
   const std::vector<std::string> cli_cell_overrides = take_cell_overrides(overrides);
   const Config cfg = Config::load(config_path, overrides);
   cfg.accept_any("notes");
-  std::vector<std::string> cell_overrides = config_cell_overrides(cfg);
-  cell_overrides.insert(cell_overrides.end(), cli_cell_overrides.begin(), cli_cell_overrides.end());
+  const std::vector<std::string> cell_overrides = config_cell_overrides(cfg, cli_cell_overrides);
   std::string cell_config = cfg.text("cell_config");
   if (fs::path(cell_config).is_relative()) cell_config = (fs::path(cfg.source()).parent_path() / cell_config).string();
   const PostOptions post = read_post_options(cfg);
