@@ -182,7 +182,11 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
         if (!input_error) input_error = std::current_exception();
         stop = true;
       }
-      progress.advance();
+      // A reloaded cell is not work: it leaves the count, so the rate and the ETA are the solves'.
+      if (outcomes[k].result.reloaded)
+        progress.skip();
+      else
+        progress.advance();
     }
   };
   if (threads <= 1) {

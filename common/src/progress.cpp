@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -51,6 +52,12 @@ void Progress::advance(std::uint64_t n) {
   if (elapsed() - last_print_s_ >= interval) print(false);
 }
 
+void Progress::skip(std::uint64_t n) {
+  std::uint64_t total = total_.load(std::memory_order_relaxed);
+  while (!total_.compare_exchange_weak(total, total - std::min(n, total), std::memory_order_relaxed)) {
+  }
+}
+
 void Progress::finish() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (finished_) return;
@@ -61,7 +68,7 @@ void Progress::finish() {
 void Progress::print(bool final) {
   const double t = elapsed();
   last_print_s_ = t;
-  std::string line = format(label_, done(), total_, t, options_.unit);
+  std::string line = format(label_, done(), total_.load(std::memory_order_relaxed), t, options_.unit);
   if (final) line += ", done in " + format_duration(t);
   std::ostream& out = *options_.out;
   if (tty_) {

@@ -58,6 +58,22 @@ TEST(Progress, PlainOutputIsThrottled) {
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2);
 }
 
+TEST(Progress, SkippedItemsLeaveTheCountAndTheEta) {
+  std::ostringstream out;
+  uhpc::ProgressOptions o;
+  o.out = &out;
+  o.tty = 0;
+  o.plain_interval_s = 0.0;
+  uhpc::Progress p("cells", 10, o);
+  p.skip(6);  // finished in an earlier run
+  p.advance();
+  EXPECT_NE(out.str().find("cells: 1/4 (25.0%)"), std::string::npos);
+  p.skip();
+  p.advance(2);
+  p.finish();
+  EXPECT_NE(out.str().find("cells: 3/3 (100.0%)"), std::string::npos) << out.str();
+}
+
 TEST(Progress, CountsEveryAdvanceFromManyThreads) {
   std::ostringstream out;
   uhpc::ProgressOptions o;

@@ -28,6 +28,9 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   void advance(std::uint64_t n = 1);
+  // Items that turn out to need no work (a resumed run's finished cells) leave the count, so the
+  // rate and the ETA describe the work still to do.
+  void skip(std::uint64_t n = 1);
   void finish();  // prints the final line with the elapsed time (once)
 
   std::uint64_t done() const { return done_.load(std::memory_order_relaxed); }
@@ -41,7 +44,7 @@ class Progress {
   double elapsed() const;
 
   std::string label_;
-  std::uint64_t total_;
+  std::atomic<std::uint64_t> total_;
   ProgressOptions options_;
   bool tty_;
   std::atomic<std::uint64_t> done_{0};
