@@ -7,6 +7,8 @@ usage: plot_ensemble.py DIR [--sdel SDEL.json]
                               standard deviation over the cells
   DIR/fig9_damage.png         mean damage per cell size, +- one standard deviation, and (dashed) the
                               SDEL of --sdel at the same sizes for reference (default: none)
+  DIR/size_table.md           per size (from DIR/summary.json): cells, peak stress, nominal strength,
+                              strain at d = 0.5 beside the --sdel law's, bridging check; also printed
 """
 import argparse
 import json
@@ -26,6 +28,37 @@ def sdel_damage(sdel: dict, size_m: float, strain) -> list:
     lam = size_m / sdel["l_mac_m"]
     e_i = c["A"] / math.sqrt(1.0 + c["a"] * lam)
     return [1.0 / (1.0 + c["nu"] * math.exp(-lam * c["chi"] * (e - e_i))) for e in strain]
+
+
+def sdel_half_damage_strain(sdel: dict, size_m: float) -> float:
+    """The strain where the SDEL gives d+ = 0.5: e_i + ln(nu) / (lambda chi)."""
+    c = sdel["constants"]
+    lam = size_m / sdel["l_mac_m"]
+    return c["A"] / math.sqrt(1.0 + c["a"] * lam) + math.log(c["nu"]) / (lam * c["chi"])
+
+
+def size_table(summary: dict, sdel) -> str:
+    """Markdown table of the per-size figures in an ensemble's summary.json."""
+    sdel_col = " e(d = 0.5) SDEL |" if sdel else ""
+    lines = [
+        "| size | cells ok / failed / incomplete / suspect | peak stress mean +- std (min-max) MPa"
+        " | its standard error | nominal strength MPa | e(d = 0.5) mean +- std |" + sdel_col + " E0_bar GPa | bridging max |",
+        "|---" * (8 + (1 if sdel else 0)) + "|",
+    ]
+    for s in summary["sizes"]:
+        pk, eh, e0 = s["peak_stress_Pa"], s["strain_at_half_damage"], s["E0_bar_Pa"]
+        row = (
+            f"| {s['cell_size_m'] * 1e3:.1f} mm | {s['cells_ok']} / {s['cells_failed']} / {s['cells_incomplete']}"
+            f" / {s['cells_suspect']} | {pk['mean'] * 1e-6:.2f} +- {pk['std'] * 1e-6:.2f}"
+            f" ({pk['min'] * 1e-6:.2f}-{pk['max'] * 1e-6:.2f}) | {pk['std'] * 1e-6 / math.sqrt(max(pk['count'], 1)):.2f}"
+            f" | {s['nominal_strength_Pa'] * 1e-6:.2f}"
+            f" | {eh['mean'] * 1e4:.2f}e-4 +- {eh['std'] * 1e4:.2f}e-4 |"
+        )
+        if sdel:
+            row += f" {sdel_half_damage_strain(sdel, s['cell_size_m']) * 1e4:.2f}e-4 |"
+        row += f" {e0['mean'] * 1e-9:.2f} | {s['bridging_max_abs_difference']:.1e} |"
+        lines.append(row)
+    return "\n".join(lines) + "\n"
 
 
 def draw_bands(ax, strain, mean, std, labels) -> None:
@@ -73,6 +106,11 @@ def main() -> None:
     title = "microcell damage (Fig. 9)" + (f"; dashed: SDEL of {args.sdel.name}" if sdel else "")
     ax.set(xlabel="imposed strain (1e-3)", ylabel="damage d", title=title, ylim=(-0.02, 1.02))
     save(fig, ax, args.directory / "fig9_damage.png")
+
+    table = size_table(json.loads((args.directory / "summary.json").read_text()), sdel)
+    (args.directory / "size_table.md").write_text(table)
+    print(table, end="")
+    print(f"wrote {args.directory / 'size_table.md'}")
 
 
 if __name__ == "__main__":
