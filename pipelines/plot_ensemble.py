@@ -8,7 +8,8 @@ usage: plot_ensemble.py DIR [--sdel SDEL.json]
   DIR/fig9_damage.png         mean damage per cell size, +- one standard deviation, and (dashed) the
                               SDEL of --sdel at the same sizes for reference (default: none)
   DIR/size_table.md           per size (from DIR/summary.json): cells, peak stress, nominal strength,
-                              strain at d = 0.5 beside the --sdel law's, bridging check; also printed
+                              strain at d = 0.5, beside the --sdel law's peak ((1 - d) E0_bar e with the
+                              cells' E0_bar) and strain at d = 0.5; bridging check; also printed
 """
 import argparse
 import json
@@ -37,9 +38,15 @@ def sdel_half_damage_strain(sdel: dict, size_m: float) -> float:
     return c["A"] / math.sqrt(1.0 + c["a"] * lam) + math.log(c["nu"]) / (lam * c["chi"])
 
 
+def sdel_peak_stress(sdel: dict, size_m: float, e0_bar: float) -> float:
+    """max over e of (1 - d+(e)) E0_bar e: the uniaxial peak the SDEL implies with the cells' stiffness."""
+    strain = [k * 1e-7 for k in range(1, 30001)]
+    return max((1.0 - d) * e0_bar * e for d, e in zip(sdel_damage(sdel, size_m, strain), strain))
+
+
 def size_table(summary: dict, sdel) -> str:
     """Markdown table of the per-size figures in an ensemble's summary.json."""
-    sdel_col = " e(d = 0.5) SDEL |" if sdel else ""
+    sdel_col = " SDEL: peak MPa, e(d = 0.5) |" if sdel else ""
     lines = [
         "| size | cells ok / failed / incomplete / suspect | peak stress mean +- std (min-max) MPa"
         " | its standard error | nominal strength MPa | e(d = 0.5) mean +- std |" + sdel_col + " E0_bar GPa | bridging max |",
@@ -55,7 +62,10 @@ def size_table(summary: dict, sdel) -> str:
             f" | {eh['mean'] * 1e4:.2f}e-4 +- {eh['std'] * 1e4:.2f}e-4 |"
         )
         if sdel:
-            row += f" {sdel_half_damage_strain(sdel, s['cell_size_m']) * 1e4:.2f}e-4 |"
+            row += (
+                f" {sdel_peak_stress(sdel, s['cell_size_m'], e0['mean']) * 1e-6:.1f},"
+                f" {sdel_half_damage_strain(sdel, s['cell_size_m']) * 1e4:.2f}e-4 |"
+            )
         row += f" {e0['mean'] * 1e-9:.2f} | {s['bridging_max_abs_difference']:.1e} |"
         lines.append(row)
     return "\n".join(lines) + "\n"
