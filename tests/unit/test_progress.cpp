@@ -10,6 +10,15 @@
 
 namespace {
 
+// Plain (non-terminal) output into `out`, a line at most every `interval_s` seconds.
+uhpc::ProgressOptions plain_options(std::ostringstream& out, double interval_s) {
+  uhpc::ProgressOptions o;
+  o.out = &out;
+  o.tty = 0;
+  o.plain_interval_s = interval_s;
+  return o;
+}
+
 TEST(Progress, FormatsCountPercentageRateAndEta) {
   EXPECT_EQ(uhpc::Progress::format("cells", 25, 100, 5.0, "cells"), "cells: 25/100 (25.0%), 5 cells/s, ETA 15s");
   EXPECT_EQ(uhpc::Progress::format("run", 3, 0, 2.0, ""), "run: 3, 1.5/s");
@@ -27,11 +36,7 @@ TEST(Progress, FormatsDurations) {
 TEST(Progress, PlainOutputIsWholeLinesWithAFinalSummary) {
   std::ostringstream out;
   {
-    uhpc::ProgressOptions o;
-    o.out = &out;
-    o.tty = 0;
-    o.plain_interval_s = 0.0;  // print at every advance
-    uhpc::Progress p("steps", 4, o);
+    uhpc::Progress p("steps", 4, plain_options(out, 0.0));  // a line at every advance
     for (int i = 0; i < 4; ++i) p.advance();
     p.finish();
     p.finish();  // idempotent
@@ -46,11 +51,7 @@ TEST(Progress, PlainOutputIsWholeLinesWithAFinalSummary) {
 
 TEST(Progress, PlainOutputIsThrottled) {
   std::ostringstream out;
-  uhpc::ProgressOptions o;
-  o.out = &out;
-  o.tty = 0;
-  o.plain_interval_s = 3600.0;
-  uhpc::Progress p("steps", 1000, o);
+  uhpc::Progress p("steps", 1000, plain_options(out, 3600.0));
   for (int i = 0; i < 1000; ++i) p.advance();
   p.finish();
   // The first advance prints (nothing printed before), then nothing until finish().
@@ -60,11 +61,7 @@ TEST(Progress, PlainOutputIsThrottled) {
 
 TEST(Progress, SkippedItemsLeaveTheCountAndTheEta) {
   std::ostringstream out;
-  uhpc::ProgressOptions o;
-  o.out = &out;
-  o.tty = 0;
-  o.plain_interval_s = 0.0;
-  uhpc::Progress p("cells", 10, o);
+  uhpc::Progress p("cells", 10, plain_options(out, 0.0));
   p.skip(6);  // finished in an earlier run
   p.advance();
   EXPECT_NE(out.str().find("cells: 1/4 (25.0%)"), std::string::npos);
