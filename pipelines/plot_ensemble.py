@@ -9,12 +9,16 @@ usage: plot_ensemble.py DIR [--sdel SDEL.json]
                               SDEL of --sdel at the same sizes for reference (default: none)
   DIR/size_table.md           per size (from DIR/summary.json): cells, peak stress, nominal strength,
                               strain at d = 0.5, beside the --sdel law's peak ((1 - d) E0_bar e with the
-                              cells' E0_bar) and strain at d = 0.5; bridging check; also printed
+                              cells' E0_bar) and strain at d = 0.5; bridging check; then per size from
+                              the cells' summary.json: status, wall time, work balance, operator check,
+                              growth unloads and jumps, DOFs; also printed
 """
 import argparse
 import json
 import math
+from collections import Counter
 from pathlib import Path
+from statistics import mean, median
 
 import h5py
 import matplotlib
@@ -71,6 +75,30 @@ def size_table(summary: dict, sdel) -> str:
     return "\n".join(lines) + "\n"
 
 
+def cell_table(directory: Path, summary: dict) -> str:
+    """Markdown table of the ensemble's cells per size, from each cell's summary.json: status, cost,
+    work balance at the last state, operator check, growth unloads and jumps, size of the system."""
+    lines = [
+        "| size | status | wall s mean (min-max) | \\|balance\\| median / max | operator mismatch max"
+        " | cells with growth unloads / jumps | DOFs mean |",
+        "|---" * 7 + "|",
+    ]
+    for s in summary["sizes"]:
+        cells = [json.loads((directory / s["directory"] / f"cell_{r:02d}" / "summary.json").read_text())
+                 for r in range(len(s["seeds"]))]
+        status = ", ".join(f"{n} {k}" for k, n in sorted(Counter(c["status"] for c in cells).items()))
+        wall = [c["wall_s"] for c in cells]
+        balance = [abs(c["energy_balance_relative"]) for c in cells if c["energy_balance_relative"] is not None]
+        balance_text = f"{median(balance):.1e} / {max(balance):.1e}" if balance else "-"
+        lines.append(
+            f"| {s['cell_size_m'] * 1e3:.1f} mm | {status} | {mean(wall):.0f} ({min(wall):.0f}-{max(wall):.0f})"
+            f" | {balance_text} | {max(c['operator_energy_mismatch'] for c in cells):.1e}"
+            f" | {sum(1 for c in cells if c['growth_unloads'])} / {sum(1 for c in cells if c['jumps'])}"
+            f" | {mean(c['dofs'] for c in cells):.0f} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
 def draw_bands(ax, strain, mean, std, labels) -> None:
     """One line per size (row of mean) with a +- one standard deviation band."""
     for k, label in enumerate(labels):
@@ -117,7 +145,8 @@ def main() -> None:
     ax.set(xlabel="imposed strain (1e-3)", ylabel="damage d", title=title, ylim=(-0.02, 1.02))
     save(fig, ax, args.directory / "fig9_damage.png")
 
-    table = size_table(json.loads((args.directory / "summary.json").read_text()), sdel)
+    summary = json.loads((args.directory / "summary.json").read_text())
+    table = size_table(summary, sdel) + "\n" + cell_table(args.directory, summary)
     (args.directory / "size_table.md").write_text(table)
     print(table, end="")
     print(f"wrote {args.directory / 'size_table.md'}")
