@@ -118,7 +118,8 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   std::mutex error_mutex;
   std::exception_ptr input_error;
 
-  const auto do_cell = [&](std::size_t k) {
+  // Sets up cell k's job and reloads its results when a finished run of the same cell is on disk.
+  const auto prepare_or_reload = [&](std::size_t k) {
     const std::size_t i = k / e.realizations, r = k % e.realizations;
     CellOutcome& o = outcomes[k];
     CellJob& job = o.job;
@@ -140,8 +141,24 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
       o.result.reloaded = true;
       // Post-processing options changed since: refresh the derived data in the cell's files.
       if (!stored->post_hash_matches) write_cell_results(job.out_dir, job, o.result, e.post, "uhpc-micro ensemble");
-      return;
     }
+  };
+  // Every finished cell is reloaded before any solve starts, so the progress count and its ETA are the
+  // solves' from the first line (the solves go largest first, and a resumed run's finished cells are
+  // often the first realizations of every size).
+  std::size_t reloaded_cells = 0;
+  for (std::size_t k = 0; k < total; ++k) {
+    prepare_or_reload(k);
+    if (outcomes[k].result.reloaded) ++reloaded_cells;
+  }
+  if (reloaded_cells > 0) {
+    spdlog::info("{} of {} cells reloaded from {}", reloaded_cells, total, out.string());
+    progress.skip(reloaded_cells);
+  }
+
+  const auto do_cell = [&](std::size_t k) {
+    CellOutcome& o = outcomes[k];
+    CellJob& job = o.job;
     fs::create_directories(job.out_dir);
     CellResponse response;
     try {
@@ -174,6 +191,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
       // Largest cells first (sizes are ascending): the longest solves start first and the workers
       // finish together instead of one of them ending the run alone on a 6.5 mm cell.
       const std::size_t k = total - 1 - taken;
+      if (outcomes[k].result.reloaded) continue;
       try {
         do_cell(k);
       } catch (...) {
@@ -182,11 +200,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
         if (!input_error) input_error = std::current_exception();
         stop = true;
       }
-      // A reloaded cell is not work: it leaves the count, so the rate and the ETA are the solves'.
-      if (outcomes[k].result.reloaded)
-        progress.skip();
-      else
-        progress.advance();
+      progress.advance();
     }
   };
   if (threads <= 1) {
