@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <limits>
@@ -44,6 +45,12 @@ struct AnalysisEnsembleSettings {
 };
 
 std::string size_label(double size_m) { return fmt::format("size_{:.1f}mm", size_m * 1e3); }
+
+// [choice] A cell's expected cost, for the progress line's percentage and ETA only: the fourth power of
+// its side. The shipped ensemble's mean cell times at 100 um, 28 / 129 / 241 / 580 s for 3.0 / 4.5 / 5.0 /
+// 6.5 mm, grow as side^3.9; counting cells instead put the ETA of a resumed run, 6.5 mm cells first, 3x
+// too late.
+double expected_cell_work(double size_m) { return std::pow(size_m * 1e3, 4); }
 
 AnalysisEnsembleSettings read_settings(const Config& cfg) {
   AnalysisEnsembleSettings e;
@@ -113,6 +120,9 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   ProgressOptions po;
   po.unit = "cells";
   Progress progress("cells", total, po);
+  double total_work = 0;
+  for (double size : e.sizes_m) total_work += e.realizations * expected_cell_work(size);
+  progress.set_work_total(total_work);
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
   std::mutex error_mutex;
@@ -147,13 +157,17 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   // solves' from the first line (the solves go largest first, and a resumed run's finished cells are
   // often the first realizations of every size).
   std::size_t reloaded_cells = 0;
+  double reloaded_work = 0;
   for (std::size_t k = 0; k < total; ++k) {
     prepare_or_reload(k);
-    if (outcomes[k].result.reloaded) ++reloaded_cells;
+    if (outcomes[k].result.reloaded) {
+      ++reloaded_cells;
+      reloaded_work += expected_cell_work(outcomes[k].job.size_m);
+    }
   }
   if (reloaded_cells > 0) {
     spdlog::info("{} of {} cells reloaded from {}", reloaded_cells, total, out.string());
-    progress.skip(reloaded_cells);
+    progress.skip(reloaded_cells, reloaded_work);
   }
 
   const auto do_cell = [&](std::size_t k) {
@@ -200,7 +214,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
         if (!input_error) input_error = std::current_exception();
         stop = true;
       }
-      progress.advance();
+      progress.advance(1, expected_cell_work(outcomes[k].job.size_m));
     }
   };
   if (threads <= 1) {

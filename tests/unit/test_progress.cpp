@@ -71,6 +71,21 @@ TEST(Progress, SkippedItemsLeaveTheCountAndTheEta) {
   EXPECT_NE(out.str().find("cells: 3/3 (100.0%)"), std::string::npos) << out.str();
 }
 
+TEST(Progress, WorkWeightsThePercentageAndTheEta) {
+  // 1 of 4 items in 10 s, but only 0.1 of the work: 0.9 left at 0.01 per s is 90 s (by count: 30 s).
+  EXPECT_EQ(uhpc::Progress::format("cells", 1, 4, 10.0, "cells", 0.1, 1.0),
+            "cells: 1/4 (10.0% of the work), 0.1 cells/s, ETA 1m30s");
+  std::ostringstream out;
+  uhpc::Progress p("cells", 10, plain_options(out, 0.0));
+  p.set_work_total(100.0);
+  p.skip(6, 60.0);     // reloaded: 4 cells and 40 of work left
+  p.advance(1, 30.0);  // the largest first
+  EXPECT_NE(out.str().find("cells: 1/4 (75.0% of the work)"), std::string::npos) << out.str();
+  p.advance(3, 10.0);
+  p.finish();
+  EXPECT_NE(out.str().find("cells: 4/4 (100.0% of the work)"), std::string::npos) << out.str();
+}
+
 TEST(Progress, CountsEveryAdvanceFromManyThreads) {
   std::ostringstream out;
   uhpc::ProgressOptions o;

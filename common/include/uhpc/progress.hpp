@@ -27,17 +27,23 @@ class Progress {
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
-  void advance(std::uint64_t n = 1);
+  // `work`: the items' share of a total set with set_work_total (0 when no total is set).
+  void advance(std::uint64_t n = 1, double work = 0.0);
   // Items that turn out to need no work (a resumed run's finished cells) leave the count, so the
   // rate and the ETA describe the work still to do.
-  void skip(std::uint64_t n = 1);
+  void skip(std::uint64_t n = 1, double work = 0.0);
+  // Items of unequal cost (cells of four sizes, the largest 20x the smallest): with a total work the
+  // percentage and the ETA follow the work done, not the count; the caller passes each item's expected
+  // work to advance() and skip().
+  void set_work_total(double work);
   void finish();  // prints the final line with the elapsed time (once)
 
   std::uint64_t done() const { return done_.load(std::memory_order_relaxed); }
 
-  // "label: 120/400 (30.0%), 12.5 steps/s, ETA 22s" (total 0: no percentage and no ETA).
+  // "label: 120/400 (30.0%), 12.5 steps/s, ETA 22s" (total 0: no percentage and no ETA). With a work
+  // total > 0: "label: 4/51 (28.0% of the work), ..., ETA" from the work's rate.
   static std::string format(const std::string& label, std::uint64_t done, std::uint64_t total, double elapsed_s,
-                            const std::string& unit);
+                            const std::string& unit, double work_done = 0.0, double work_total = 0.0);
 
  private:
   void print(bool final);
@@ -48,6 +54,8 @@ class Progress {
   ProgressOptions options_;
   bool tty_;
   std::atomic<std::uint64_t> done_{0};
+  std::atomic<double> work_done_{0.0};
+  std::atomic<double> work_total_{0.0};
   std::chrono::steady_clock::time_point start_;
   double last_print_s_ = -1e300;
   bool finished_ = false;
