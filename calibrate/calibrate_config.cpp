@@ -8,7 +8,8 @@ CalibrateSettings read_calibrate_settings(const Config& cfg) {
   CalibrateSettings s;
   s.l_mac_m = cfg.number("l_mac_m", Range::positive());
   s.f_t_Pa = cfg.number("f_t_Pa", Range::positive());
-  s.strain_measure = cfg.choice("strain_measure", {kSdelStrainMazars, kSdelStrainMaxPrincipal});
+  s.strain_measure =
+      cfg.choice("strain_measure", {kSdelStrainEffectiveTensile, kSdelStrainMazars, kSdelStrainMaxPrincipal});
   s.figure_points = static_cast<int>(cfg.integer("figure_points", Range::closed(2, 1e6)));
 
   SdelFitOptions& f = s.fit;

@@ -26,7 +26,8 @@ SdelHandoff from_config(const Config& cfg) {
   h.constants.chi = constants.number("chi", Range::positive());
   h.l_mac_m = cfg.number("l_mac_m", Range::positive());
   if (cfg.has("strain_measure")) {
-    h.strain_measure = cfg.choice("strain_measure", {kSdelStrainMazars, kSdelStrainMaxPrincipal});
+    h.strain_measure =
+        cfg.choice("strain_measure", {kSdelStrainEffectiveTensile, kSdelStrainMazars, kSdelStrainMaxPrincipal});
   }
   h.cell_sizes_m = cfg.numbers("cell_sizes_m", Range::positive());
   h.source = cfg.text("source");

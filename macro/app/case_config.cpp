@@ -43,6 +43,8 @@ ProjectileSettings read_projectile(const Config& p) {
   s.initial_gap_m = p.number("initial_gap_m", Range::non_negative());
   s.velocity_m_s = p.number("velocity_m_s", Range::positive());
   const Config c = p.section("contact");
+  s.contact.model = c.choice("model", {"kinematic", "penalty"}) == "penalty" ? SphereContactModel::Penalty
+                                                                            : SphereContactModel::Kinematic;
   s.contact.penalty_scale = c.number("penalty_scale", Range::positive());
   s.contact.contact_radius_factor = c.number("contact_radius_factor", Range::open(0.0, 2.0));
   s.contact.friction_coefficient = c.number("friction_coefficient", Range::closed(0.0, 2.0));

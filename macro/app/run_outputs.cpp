@@ -22,10 +22,13 @@ void FieldOutput::write(const ExplicitSolver& solver) {
     pressure_[i] = pressure_of(s);
     equivalent_[i] = von_mises(s);
   }
+  dissipated_.resize(p.n);
+  for (std::size_t i = 0; i < p.n; ++i) dissipated_[i] = solver.dissipated_density(i);
   std::vector<ParticleField> fields = {{"velocity", "m/s", 3, p.v.data()},
                                        {"pressure", "Pa", 1, pressure_.data()},
                                        {"equivalent_stress", "Pa", 1, equivalent_.data()},
-                                       {"volume", "m^3", 1, p.volume.data()}};
+                                       {"volume", "m^3", 1, p.volume.data()},
+                                       {"dissipated_J_m3", "J/m^3", 1, dissipated_.data()}};
   // The law's fields come interleaved (n x k); each is written as its own scalar array.
   law_output_values(solver.material(), law_values_);
   const std::size_t k = law_fields_.size();
@@ -43,18 +46,21 @@ History::History() {
       "time_s,step,dt_s,sphere_x_m,sphere_y_m,sphere_z_m,sphere_vx_m_s,sphere_vy_m_s,sphere_vz_m_s,"
       "contact_force_x_N,contact_force_y_N,contact_force_z_N,contact_particles,kinetic_J,kinetic_sphere_J,"
       "internal_J,dissipated_material_J,dissipated_viscous_J,contact_J,contact_stored_J,external_work_J,"
-      "energy_balance_error_J,momentum_x_N_s,momentum_y_N_s,momentum_z_N_s\n";
+      "energy_balance_error_J,momentum_x_N_s,momentum_y_N_s,momentum_z_N_s,elastic_stored_J,plastic_J,crushing_J,"
+      "released_J,stabilization_J,stabilization_stored_J\n";
 }
 
 void History::add(const ExplicitSolver& s) {
   const EnergyLedger& e = s.ledger();
   const RigidSphere& sp = s.sphere();
   text_ += fmt::format("{:.17g},{},{:.6e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.6e},{:.6e},{},{:.9e},{:.9e},"
-                       "{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.9e},{:.9e},{:.9e}\n",
+                       "{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},"
+                       "{:.9e},{:.9e},{:.9e}\n",
                        s.time(), s.steps(), s.last_dt(), sp.x[0], sp.x[1], sp.x[2], sp.v[0], sp.v[1], sp.v[2],
                        sp.force[0], sp.force[1], sp.force[2], s.contact().particles_in_contact, e.kinetic,
                        e.kinetic_sphere, e.internal, e.material_dissipated, e.viscous, e.contact, e.contact_stored,
-                       e.external, e.balance_error(), e.momentum[0], e.momentum[1], e.momentum[2]);
+                       e.external, e.balance_error(), e.momentum[0], e.momentum[1], e.momentum[2], e.material_stored,
+                       e.plastic, e.crushing, e.released(), e.stabilization, e.stabilization_stored);
   ++rows_;
 }
 
@@ -96,6 +102,32 @@ double BalanceTracker::momentum_error(const ExplicitSolver& s) {
 void BalanceTracker::update(const ExplicitSolver& s) {
   worst_energy = std::fmax(worst_energy, energy_error(s));
   worst_momentum = std::fmax(worst_momentum, momentum_error(s));
+}
+
+nlohmann::json energy_partition_json(const EnergyLedger& e) {
+  const double lost = e.kinetic_initial - e.kinetic_sphere;
+  // kinetic + internal + viscous + contact - external - initial = balance error, and the target starts
+  // at rest, so the sphere's loss is the sum of these parts minus the balance error.
+  const std::vector<std::pair<const char*, double>> parts = {
+      {"target_kinetic_J", e.kinetic - e.kinetic_sphere},
+      {"elastic_stored_J", e.material_stored},
+      {"plastic_J", e.plastic},
+      {"crushing_J", e.crushing},
+      {"released_J", e.released()},
+      {"stabilization_stored_J", e.stabilization_stored},
+      {"stabilization_dissipated_J", e.stabilization_dissipated()},
+      {"bulk_viscosity_J", e.viscous},
+      {"contact_J", e.contact},
+      {"supports_J", -e.external},
+      {"balance_error_J", -e.balance_error()}};
+  nlohmann::json j = {{"sphere_lost_kinetic_J", lost}};
+  nlohmann::json shares = nlohmann::json::object();
+  for (const auto& [name, value] : parts) {
+    j[name] = value;
+    shares[name] = lost != 0.0 ? value / lost : 0.0;
+  }
+  j["shares"] = shares;
+  return j;
 }
 
 nlohmann::json diagnostic_json(const ExplicitSolver& s, const FailureReport& f) {

@@ -1,8 +1,9 @@
 #pragma once
 // The files of a uhpc-macro run (ARCHITECTURE.md section 2), kept apart from the time loop:
 //   FieldOutput    fields.h5 + fields.xdmf (ParaView) through uhpc::ParticleFieldWriter: position,
-//                  velocity, pressure, equivalent (von Mises) stress, volume, and the law's own fields
-//                  (Law::output_fields(), dimensionless)
+//                  velocity, pressure, equivalent (von Mises) stress, volume, the energy dissipated
+//                  per reference volume (dissipated_J_m3), and the law's own fields (Law::output_fields(),
+//                  dimensionless)
 //   History        history.csv, one row per step: time, projectile, contact, energies, momentum
 //   ImpactTracker  impact and residual velocity: the sphere's axial velocity at the first step at which
 //                  it is past the exit face (its rear surface beyond z = T) and touches no particle
@@ -31,7 +32,7 @@ class FieldOutput {
  private:
   ParticleFieldWriter writer_;
   std::vector<std::string> law_fields_;
-  std::vector<double> pressure_, equivalent_, law_values_, column_;
+  std::vector<double> pressure_, equivalent_, dissipated_, law_values_, column_;
   double last_time_ = -1.0;
 };
 
@@ -64,6 +65,13 @@ struct BalanceTracker {
   static double energy_error(const ExplicitSolver& solver);
   static double momentum_error(const ExplicitSolver& solver);
 };
+
+// Where the sphere's lost kinetic energy went, in J and as shares of it (result.json "energy_partition"):
+// the target's kinetic energy, the energy its material stores and dissipates (plastic, crushing,
+// released), the NSNI stabilization (stored, dissipated), bulk viscosity, the contact, the supports
+// (minus the external work) and the balance error; the parts add up to the loss exactly.
+// The target starts at rest, so the initial kinetic energy is the sphere's.
+nlohmann::json energy_partition_json(const EnergyLedger& ledger);
 
 // The diagnostic of a failed run (diagnostic.json).
 nlohmann::json diagnostic_json(const ExplicitSolver& solver, const FailureReport& failure);

@@ -12,15 +12,22 @@ namespace uhpc::macro {
 
 namespace {
 
-// The stress with its positive (tensile) principal values multiplied by `factor`, the negative ones
-// kept (the split of eq. 21). Eigen's closed-form 3x3 solver: no allocation.
+// The stress with its positive (tensile) principal values multiplied by `factor` in [0, 1], the
+// negative ones kept (the split of eq. 21): sigma - (1 - factor) sum over l_i > 0 of l_i p_i p_i^T, so the
+// compressive part is not touched by the round-off of a reconstruction. Eigen's closed-form 3x3
+// solver: no allocation, no division.
 Mat3 scale_tensile_part(const Mat3& stress, double factor) {
+  if (factor == 1.0) return stress;
   Eigen::SelfAdjointEigenSolver<Mat3> es;
   es.computeDirect(stress);
-  Eigen::Vector3d lam = es.eigenvalues();
+  const Eigen::Vector3d lam = es.eigenvalues();
+  Mat3 out = stress;
   for (int i = 0; i < 3; ++i)
-    if (lam[i] > 0.0) lam[i] *= factor;
-  return es.eigenvectors() * lam.asDiagonal() * es.eigenvectors().transpose();
+    if (lam[i] > 0.0) {
+      const Eigen::Vector3d p = es.eigenvectors().col(i);
+      out -= ((1.0 - factor) * lam[i]) * (p * p.transpose());
+    }
+  return out;
 }
 
 void require(bool ok, const char* what) {
@@ -64,6 +71,25 @@ double AfcMaterial::equivalent_tensile_strain(const Mat3& strain) const {
   return std::sqrt(sum);
 }
 
+double AfcMaterial::effective_tensile_strain(const Mat3& driver_stress) const {
+  if (driver_stress.isZero(0.0)) return 0.0;
+  Eigen::SelfAdjointEigenSolver<Mat3> es;
+  es.computeDirect(driver_stress, Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d lam = es.eigenvalues();
+  double plus[3], trace = 0.0;
+  for (int i = 0; i < 3; ++i) trace += plus[i] = std::max(lam[i], 0.0);
+  if (trace == 0.0) return 0.0;
+  // eps+ = C^-1 : sigma+ = ((1 + nu) sigma+ - nu tr(sigma+) I) / E, in the principal frame.
+  const double K = hydro_.elastic_bulk_modulus(), G = p_.shear_modulus_Pa;
+  const double E = 9.0 * K * G / (3.0 * K + G), nu = (3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G));
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double e = ((1.0 + nu) * plus[i] - nu * trace) / E;
+    if (e > 0.0) sum += e * e;
+  }
+  return std::sqrt(sum);
+}
+
 double AfcMaterial::sdel_damage(double kappa, double spacing_m) const {
   if (!(spacing_m > 0.0) || !std::isfinite(spacing_m))
     throw std::invalid_argument("AfcMaterial: the particle spacing h_I must be > 0 for the SDEL");
@@ -75,46 +101,61 @@ double AfcMaterial::sdel_damage(double kappa, double spacing_m) const {
 
 void AfcMaterial::update(State& st, const MaterialStep& step) const {
   const AfcOptions& o = p_.options;
+  const bool split = o.tensile_degradation == TensileDegradation::Split;
   const Mat3& de = step.strain_increment;
-  const double G = p_.shear_modulus_Pa;
+  const Mat3 dev_increment = 2.0 * p_.shear_modulus_Pa * deviator(de);
   const double mu = step.density_ratio - 1.0;
+  const double F = afc_rate_factor(effective_deviatoric_rate(de, step.dt_s), p_);
 
-  // 1. Strain history and tensile damage (never decreasing: kappa and d+ are history maxima).
-  st.strain += de;
-  if (o.tensile_damage == TensileDamage::Sdel) {
-    st.tensile_strain_max = std::max(st.tensile_strain_max, equivalent_tensile_strain(st.strain));
-    st.d_plus = std::max(st.d_plus, sdel_damage(st.tensile_strain_max, step.spacing_m));
-  }
-
-  // 2. Hydrostat.
+  // 1. Hydrostat history.
   const double mu_max_old = st.mu_max;
   st.mu_max = std::max(st.mu_max, mu);
   const double P_uncut = hydro_.uncut_pressure(mu, st.mu_max);
-  const double P = std::max(P_uncut, -p_.Tmax_Pa * (1.0 - st.d_plus));
   const double mu_p = hydro_.crushing_strain(st.mu_max);
   const double dmu_p = mu_p - st.crushing_strain;
-  st.dissipated += hydro_.crushing_dissipation(mu_max_old, st.mu_max);
+  st.crushing_work += hydro_.crushing_dissipation(mu_max_old, st.mu_max);
 
-  // 3. Deviator: elastic trial, radial return at fixed pressure onto S.
-  Mat3 previous = st.stress;
-  if (o.degrade_tensile_stress && st.tension_factor > 0.0 && st.tension_factor < 1.0)
-    previous = scale_tensile_part(st.stress, 1.0 / st.tension_factor);  // the undegraded stress
-  Mat3 s = deviator(previous) + 2.0 * G * deviator(de);
+  // 2. Tensile damage (never decreasing: kappa and d+ are history maxima).
+  if (o.tensile_damage == TensileDamage::Sdel) {
+    double e;
+    if (p_.strain_measure == TensileStrainMeasure::EffectiveTensile) {
+      // The driver: no tensile limit; on the compressive side the deviator yields onto eq. 33 as the
+      // effective stress does, so plastic flow in compression is not counted as tension.
+      Mat3 s_bar = deviator(st.driver_stress) + dev_increment;
+      if (P_uncut >= 0.0) {
+        const double S = afc_strength_compression(P_uncut, st.d_minus, F, p_);
+        const double q = std::sqrt(1.5 * s_bar.cwiseProduct(s_bar).sum());
+        if (q > S) s_bar *= S / q;
+      }
+      st.driver_stress = s_bar - P_uncut * Mat3::Identity();
+      e = effective_tensile_strain(st.driver_stress);
+    } else {
+      st.strain += de;
+      e = equivalent_tensile_strain(st.strain);
+    }
+    st.tensile_strain_max = std::max(st.tensile_strain_max, e);
+    st.d_plus = std::max(st.d_plus, sdel_damage(st.tensile_strain_max, step.spacing_m));
+  }
+
+  // 3. Effective stress: pressure with the cutoff, deviator returned at fixed pressure onto S. With the
+  // split, d+ acts on the stress handed to the solver (5.), not on these limits.
+  const double d_plus_in_limits = split ? 0.0 : st.d_plus;
+  const double P = std::max(P_uncut, -p_.Tmax_Pa * (1.0 - d_plus_in_limits));
+  Mat3 s = deviator(st.effective_stress) + dev_increment;
   const double q_trial = std::sqrt(1.5 * s.cwiseProduct(s).sum());
-  const double F = afc_rate_factor(effective_deviatoric_rate(de, step.dt_s), p_);
   // The branch follows the side of the hydrostat before its cutoff (afc_strength.hpp): at d+ = 1 an
   // expanded point has P = 0 but is open, and eq. 35's limit there is S = 0.
-  const double S = P_uncut < 0.0 ? afc_strength_tension(P, st.d_minus, st.d_plus, F, p_)
+  const double S = P_uncut < 0.0 ? afc_strength_tension(P, st.d_minus, d_plus_in_limits, F, p_)
                                  : afc_strength_compression(P, st.d_minus, F, p_);
   double dep = 0.0;
   st.deviatoric_return = 1.0;
   st.at_tensile_cutoff = P > P_uncut;
   if (q_trial > S) {
     st.deviatoric_return = S / q_trial;
-    dep = (q_trial - S) / (3.0 * G);
+    dep = (q_trial - S) / (3.0 * p_.shear_modulus_Pa);
     s *= S / q_trial;
     st.plastic_strain += dep;
-    st.dissipated += S * dep / step.density_ratio;  // s : d eps_p = S d eps_p per current volume
+    st.plastic_work += S * dep / step.density_ratio;  // s : d eps_p = S d eps_p per current volume
   }
 
   // 4. Compressive damage (eq. 36), only under compression; d- enters the next step's strength.
@@ -124,12 +165,31 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   }
   st.crushing_strain = mu_p;
   st.mu = mu;
+  st.effective_stress = s - P * Mat3::Identity();
 
-  st.stress = s - P * Mat3::Identity();
-  if (o.degrade_tensile_stress) {
-    st.tension_factor = 1.0 - st.d_plus;
-    st.stress = scale_tensile_part(st.stress, st.tension_factor);
-  }
+  // 5. The stress the solver integrates (eq. 21): the tensile principal part degraded by 1 - d+.
+  st.stress = split ? scale_tensile_part(st.effective_stress, 1.0 - st.d_plus) : st.effective_stress;
+}
+
+void AfcMaterial::rotate(State& st, const Mat3& R) const {
+  st.stress = R * st.stress * R.transpose();
+  st.effective_stress = R * st.effective_stress * R.transpose();
+  if (p_.strain_measure == TensileStrainMeasure::EffectiveTensile)
+    st.driver_stress = R * st.driver_stress * R.transpose();
+}
+
+bool AfcMaterial::stress_free(const State& st, double density_ratio) const {
+  if (!(st.d_plus >= 1.0 && density_ratio < 1.0)) return false;
+  if (p_.options.tensile_degradation == TensileDegradation::Cutoff) return true;
+  // The split hands on the compressive principal stresses: free only if the effective stress has none.
+  Eigen::SelfAdjointEigenSolver<Mat3> es;
+  es.computeDirect(st.effective_stress, Eigen::EigenvaluesOnly);
+  return es.eigenvalues()[0] >= 0.0;
+}
+
+double AfcMaterial::stored_energy(const State& st) const {
+  return half_compliance_product(st.stress, st.effective_stress, hydro_.unloading_modulus(st.mu_max),
+                                 p_.shear_modulus_Pa);
 }
 
 double AfcMaterial::wave_speed(const State& state, double density_ratio) const {
@@ -147,16 +207,19 @@ double AfcMaterial::wave_speed(const State& state, double density_ratio) const {
 }
 
 Moduli AfcMaterial::moduli(const State& state) const {
-  const double slope = std::max(hydro_.unloading_modulus(state.mu_max), hydro_.slope(state.mu, state.mu_max));
-  // Along the deviator 0: S depends on P, d- and the rate, not on the plastic flow itself (its change
-  // with the pressure gradient is neglected).
-  return {(1.0 + state.mu) * slope, p_.shear_modulus_Pa, state.deviatoric_return, 0.0, state.at_tensile_cutoff};
+  // The tangent of the hydrostat at the point's state: the loading slope on the curve (the crushing
+  // slope while crushing), K_u on the unloading line. Along the deviator 0: S depends on P, d- and the
+  // rate, not on the plastic flow itself (its change with the pressure gradient is neglected).
+  const double bulk = (1.0 + state.mu) * hydro_.slope(state.mu, state.mu_max);
+  const double tension = p_.options.tensile_degradation == TensileDegradation::Split ? 1.0 - state.d_plus : 1.0;
+  return {bulk, p_.shear_modulus_Pa, state.deviatoric_return, 0.0, state.at_tensile_cutoff, tension};
 }
 
 void AfcMaterial::output_values(const State& state, double* out) const {
   out[0] = state.d_plus;
   out[1] = state.d_minus;
   out[2] = state.plastic_strain;
+  out[3] = state.tensile_strain_max;
 }
 
 }  // namespace uhpc::macro

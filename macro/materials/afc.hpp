@@ -1,15 +1,22 @@
 #pragma once
 // The AFC concrete model with SDEL tensile damage (PHYSICS.md section 4; equations as implemented and
 // every option in macro/README.md, "AFC concrete model"). One step at a particle, in this order:
-//   1. strain history: eps += d eps (the co-rotated increments summed, see State::strain);
-//      e = equivalent tensile strain of eps (Mazars by default), kappa = max(kappa, e);
-//      d+ = max(d+, SDEL(lambda, kappa)), lambda = h_I / l_mac (h_I = MaterialStep::spacing_m);
-//   2. pressure from the hydrostat (afc_hydrostat.hpp) at mu = rho/rho0 - 1 with the cutoff
-//      Tmax (1 - d+); mu_max and the crushing strain mu_p follow;
-//   3. deviator: elastic trial s + 2G dev(d eps), radial return at fixed pressure (no dilatancy) onto
-//      S(P, d-, d+, F) (afc_strength.hpp), F from the effective deviatoric rate of this step;
-//      d eps_p = (q_trial - S) / (3G);
-//   4. d- += d eps_p / max(P D1, eps_min) + d mu_p / (1.5 C9) while P > 0 (eq. 36), clipped to 1.
+//   1. hydrostat history: mu = rho/rho0 - 1, mu_max = max(mu_max, mu), the uncut pressure P_u
+//      (afc_hydrostat.hpp, the curve or the unloading line without the tensile cutoff), the crushing
+//      strain mu_p and its dissipation;
+//   2. tensile damage: e = equivalent tensile strain by the handoff's measure, kappa = max(kappa, e),
+//      d+ = max(d+, SDEL(lambda, kappa)), lambda = h_I / l_mac (h_I = MaterialStep::spacing_m). The
+//      default measure (EffectiveTensile) reads the driver stress sigma_bar: the same material with no
+//      tensile limit (P = P_u, the deviator returned only on the compressive side, onto eq. 33), so
+//      e is the norm of the positive principal strains of C^-1 : <sigma_bar>+: zero in uniaxial
+//      compression, the axial strain in uniaxial tension (what the microcells were fitted to), and
+//      rotated with the material (State::driver_stress is objective);
+//   3. effective stress: P = max(P_u, -T); deviator: elastic trial s + 2G dev(d eps), radial return at
+//      fixed pressure (no dilatancy) onto S(P, d-, T, F) (afc_strength.hpp), F from this step's
+//      effective deviatoric rate; T = Tmax with the split (default), Tmax (1 - d+) with the cutoff
+//      coupling; d eps_p = (q_trial - S) / (3G);
+//   4. d- += d eps_p / max(P D1, eps_min) + d mu_p / (1.5 C9) while P > 0 (eq. 36), clipped to 1;
+//   5. the stress handed to the solver: <sigma_e>- + (1 - d+) <sigma_e>+ (split, eq. 21) or sigma_e.
 // d- enters the strength with its value at the start of the step (explicit), d+ with the new value.
 #include <string>
 #include <vector>
@@ -23,12 +30,15 @@ namespace uhpc::macro {
 class AfcMaterial {
  public:
   struct State {
+    // The stress handed to the solver (eq. 21's split of effective_stress, or effective_stress itself
+    // with the cutoff coupling).
     Mat3 stress = Mat3::Zero();
-    // Sum of the strain increments D dt the solver hands the law (each in that step's co-rotated
-    // frame). A hypoelastic code has no total strain; this sum is its small-strain stand-in and drives
-    // the SDEL. The solver rotates only `stress`, so this sum is not rotated with the material: exact
-    // for small rotations, which holds for concrete until it has cracked (d+ is then already
-    // irreversible). See macro/README.md.
+    // The AFC stress before the split: hydrostat with its cutoff and the eq. 33/35 return (objective).
+    Mat3 effective_stress = Mat3::Zero();
+    // sigma_bar of the EffectiveTensile measure: the material without tensile limits (objective).
+    Mat3 driver_stress = Mat3::Zero();
+    // Sum of the strain increments D dt (Mazars and MaxPrincipal measures only). Kept as the earlier
+    // option defined it: not rotated with the material.
     Mat3 strain = Mat3::Zero();
     double mu = 0.0;               // volumetric strain rho/rho0 - 1 at the end of the last step
     double mu_max = 0.0;           // history maximum of mu (>= 0)
@@ -37,10 +47,10 @@ class AfcMaterial {
     double d_plus = 0.0;           // tensile damage (SDEL, eq. 37)
     double tensile_strain_max = 0.0;  // kappa: history maximum of the equivalent tensile strain
     double plastic_strain = 0.0;   // equivalent (deviatoric) plastic strain
-    double dissipated = 0.0;       // J per unit reference volume: deviatoric plastic work + crushing
-    double tension_factor = 1.0;   // (1 - d+) applied to `stress` by degrade_tensile_stress, else 1
+    double plastic_work = 0.0;     // J per unit reference volume: deviatoric plastic work
+    double crushing_work = 0.0;    // J per unit reference volume: crushing of the hydrostat
     double deviatoric_return = 1.0;  // S / q_trial of the last step's radial return (1: elastic step)
-    bool at_tensile_cutoff = false;  // the last step's pressure was held at -Tmax (1 - d+)
+    bool at_tensile_cutoff = false;  // the last step's pressure was held at the cutoff
   };
 
   // Throws std::invalid_argument for inconsistent constants (non-positive moduli, lengths, C1 <= C2,
@@ -53,26 +63,35 @@ class AfcMaterial {
   // Dilatational wave speed sqrt((K + 4G/3) / rho), K = rho dP/drho = (1 + mu) dP/dmu the current
   // tangent of the hydrostat (AfcOptions::wave_speed_from_unloading_modulus for the bound).
   double wave_speed(const State& state, double density_ratio) const;
-  // A fully failed point (d+ = 1) that is open (expanded past its reference density): P = 0 and S = 0
-  // on the tension side, so it carries no stress and resists nothing until it closes back to rho0.
-  bool stress_free(const State& state, double density_ratio) const {
-    return state.d_plus >= 1.0 && density_ratio < 1.0;
-  }
+  // A fully failed point (d+ = 1) that is open (expanded past its reference density) and hands the
+  // solver no stress (with the split: no compressive principal stress left either): it resists nothing
+  // until it closes back to rho0.
+  bool stress_free(const State& state, double density_ratio) const;
   double reference_density() const { return p_.density_kg_m3; }
-  // An upper bound of the tangent: (1 + mu) max(K_u, dP/dmu) and G (keeps the NSNI term stabilising).
+  // For NSNI: the current tangent (1 + mu) dP/dmu of the hydrostat (the crushing slope while loading on
+  // the curve, K_u below it), G, the last return, the cutoff and the split's factor 1 - d+.
   Moduli moduli(const State& state) const;
-  double dissipated_energy(const State& state) const { return state.dissipated; }
+  void rotate(State& state, const Mat3& R) const;
+  bool splits_stress() const { return p_.options.tensile_degradation == TensileDegradation::Split; }
+  const Mat3& effective_stress(const State& state) const { return state.effective_stress; }
+  // Free energy per unit current volume, 1/2 sigma : C_u^-1 : sigma_e (eq. 21: (1 - d+) Psi0+ + Psi0-
+  // with the split), C_u the elastic unloading moduli (K_u(mu_max), G).
+  double stored_energy(const State& state) const;
+  DissipationParts dissipation(const State& state) const { return {state.plastic_work, state.crushing_work}; }
 
   // Per-particle output fields, one value each, in this order.
   static std::vector<std::string> output_fields() {
-    return {"damage_tension", "damage_compression", "plastic_strain"};  // pressure: the solver writes it
+    return {"damage_tension", "damage_compression", "plastic_strain", "tensile_strain_max"};
   }
   void output_values(const State& state, double* out) const;
 
   const AfcParams& params() const { return p_; }
   const AfcHydrostat& hydrostat() const { return hydro_; }
-  // The equivalent tensile strain of a strain tensor by the law's measure.
+  // The equivalent tensile strain of a strain tensor by the Mazars or MaxPrincipal measure.
   double equivalent_tensile_strain(const Mat3& strain) const;
+  // The EffectiveTensile measure of a driver stress: the norm of the positive principal strains of
+  // C^-1 : <sigma_bar>+ (C from K_e and G).
+  double effective_tensile_strain(const Mat3& driver_stress) const;
   // The SDEL d+ at history strain kappa for spacing h (with the zero-anchoring option).
   double sdel_damage(double kappa, double spacing_m) const;
 

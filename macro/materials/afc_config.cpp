@@ -24,7 +24,9 @@ AfcOptions afc_options_from_config(const uhpc::Config& c) {
   if (c.has("rate_factor_floor")) o.rate_factor_floor = c.number("rate_factor_floor", Range::non_negative());
   if (c.has("cap_strength_with_c5")) o.cap_strength_with_c5 = c.flag("cap_strength_with_c5");
   if (c.has("damage_eps_min")) o.damage_eps_min = c.number("damage_eps_min", Range::positive());
-  if (c.has("degrade_tensile_stress")) o.degrade_tensile_stress = c.flag("degrade_tensile_stress");
+  if (c.has("tensile_degradation"))
+    o.tensile_degradation = c.choice("tensile_degradation", {"split", "cutoff"}) == "cutoff" ? TensileDegradation::Cutoff
+                                                                                             : TensileDegradation::Split;
   if (c.has("sdel_zero_anchored")) o.sdel_zero_anchored = c.flag("sdel_zero_anchored");
   if (c.has("tensile_damage"))
     o.tensile_damage = c.choice("tensile_damage", {"sdel", "off"}) == "off" ? TensileDamage::Off : TensileDamage::Sdel;
@@ -67,7 +69,8 @@ AfcParams afc_params_from_config(const uhpc::Config& c, const uhpc::SdelHandoff&
   p.sdel = sdel.constants;
   p.l_mac_m = sdel.l_mac_m;
   p.strain_measure = sdel.strain_measure == kSdelStrainMaxPrincipal ? TensileStrainMeasure::MaxPrincipal
-                                                                    : TensileStrainMeasure::Mazars;
+                     : sdel.strain_measure == kSdelStrainMazars    ? TensileStrainMeasure::Mazars
+                                                                   : TensileStrainMeasure::EffectiveTensile;
   try {
     (void)AfcMaterial(p);  // the remaining consistency checks (crushing curve) live with the law
   } catch (const std::invalid_argument& e) {

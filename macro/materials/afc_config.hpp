@@ -9,7 +9,7 @@
 //   K3_Pa, D1_1_Pa, An_1_Pa, Tmax_Pa, reference_strain_rate_1_s; "source" (optional text);
 //   "options" (optional object, every key optional, defaults of AfcOptions):
 //     rate_factor_floor (>= 0), cap_strength_with_c5 (bool), damage_eps_min (> 0),
-//     degrade_tensile_stress (bool), sdel_zero_anchored (bool), tensile_damage ("sdel" | "off"),
+//     tensile_degradation ("split" | "cutoff"), sdel_zero_anchored (bool), tensile_damage ("sdel" | "off"),
 //     wave_speed_from_unloading_modulus (bool).
 #include <string>
 #include <vector>

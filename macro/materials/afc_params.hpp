@@ -8,8 +8,25 @@ namespace uhpc::macro {
 
 // The equivalent tensile strain that drives the SDEL (the handoff's "strain_measure").
 enum class TensileStrainMeasure {
-  Mazars,        // sqrt(sum of squared positive principal strains)  (default, PHYSICS.md section 3)
-  MaxPrincipal,  // largest principal strain, 0 when negative
+  // sqrt(sum of squared positive principal strains) of eps+ = C^-1 : <sigma_bar>+, the elastic strain
+  // produced by the positive principal effective stresses (default, PHYSICS.md section 3): the
+  // conjugate of the tensile free energy of eqs. 21-23. sigma_bar is AfcMaterial::State::driver_stress,
+  // the stress of the material without tensile limits; C the elastic compliance (K_e, G).
+  EffectiveTensile,
+  Mazars,        // sqrt(sum of squared positive principal strains) of the summed total strain (option)
+  MaxPrincipal,  // largest principal strain of the summed total strain, 0 when negative (option)
+};
+
+// How d+ acts on the stress (AfcOptions::tensile_degradation).
+enum class TensileDegradation {
+  // [choice, default] eq. 21's split: the AFC stress with its undamaged tensile limits (cutoff -Tmax,
+  // eq. 35 with T = Tmax) is the effective stress sigma_e kept in the state; the solver gets
+  // sigma = <sigma_e>- + (1 - d+) <sigma_e>+ (principal parts). In uniaxial tension this is the
+  // microcells' (1 - d) E e up to AFC's own undamaged strength.
+  Split,
+  // The paper's AFC coupling as PHYSICS.md section 4 states it: d+ lowers the tensile cutoff to
+  // Tmax (1 - d+) and T in eq. 35; the stress tensor itself is not degraded.
+  Cutoff,
 };
 
 // Where the tensile damage d+ comes from.
@@ -27,9 +44,8 @@ struct AfcOptions {
   bool cap_strength_with_c5 = false;
   // [choice] eq. 36's floor of the pressure term: d- += d eps_p / max(P D1, eps_min) + ...
   double damage_eps_min = 0.01;
-  // [option] degrade the tensile principal part of the stress by (1 - d+) (eq. 21's split). Off by
-  // default: d+ then acts only through the tensile cutoff and eq. 35, as in the paper.
-  bool degrade_tensile_stress = false;
+  // [choice] how d+ acts on the stress: eq. 21's split (default) or the tensile cutoff and eq. 35.
+  TensileDegradation tensile_degradation = TensileDegradation::Split;
   // [choice] the SDEL as printed (false, default: d+(0) = 1/(1 + nu exp(lambda chi e_i)) > 0, about
   // 2e-5 at 3 mm) or shifted to start at exactly 0 (true, uhpc::sdel_damage_zero_anchored).
   bool sdel_zero_anchored = false;
@@ -61,7 +77,7 @@ struct AfcParams {
 
   SdelConstants<double> sdel{};  // a, A, nu, chi (the micro-to-macro handoff)
   double l_mac_m = 0.4064;
-  TensileStrainMeasure strain_measure = TensileStrainMeasure::Mazars;
+  TensileStrainMeasure strain_measure = TensileStrainMeasure::EffectiveTensile;
 
   AfcOptions options{};
 };

@@ -29,8 +29,18 @@ class ElasticMaterial {
   bool stress_free(const State&, double) const { return false; }
   double reference_density() const { return p_.density_kg_m3; }
   Moduli moduli(const State&) const { return {p_.bulk_modulus_Pa, p_.shear_modulus_Pa}; }
+  // The objective tensors of the state, rotated by the solver around each update: the stress.
+  void rotate(State& state, const Mat3& R) const { state.stress = R * state.stress * R.transpose(); }
+  // Whether the stress handed to the solver is a split of an effective stress (eq. 21): no.
+  bool splits_stress() const { return false; }
+  // The stress the NSNI gradient is returned with (the law has no split: the stress itself).
+  const Mat3& effective_stress(const State& state) const { return state.stress; }
+  // Elastic energy held per unit current volume, 1/2 sigma : C^-1 : sigma.
+  double stored_energy(const State& state) const {
+    return half_compliance_product(state.stress, state.stress, p_.bulk_modulus_Pa, p_.shear_modulus_Pa);
+  }
   // Energy dissipated per unit reference volume so far (none for an elastic law).
-  double dissipated_energy(const State&) const { return 0.0; }
+  DissipationParts dissipation(const State&) const { return {}; }
   const ElasticParams& params() const { return p_; }
   // Per-particle output fields beyond the solver's (stress, pressure, ...): none for this law.
   static std::vector<std::string> output_fields() { return {}; }

@@ -39,7 +39,14 @@ class J2Material {
     return {p_.bulk_modulus_Pa, p_.shear_modulus_Pa, state.deviatoric_return,
             p_.hardening_modulus_Pa / (3.0 * p_.shear_modulus_Pa + p_.hardening_modulus_Pa), false};
   }
-  double dissipated_energy(const State& state) const { return state.plastic_work; }
+  void rotate(State& state, const Mat3& R) const { state.stress = R * state.stress * R.transpose(); }
+  bool splits_stress() const { return false; }
+  const Mat3& effective_stress(const State& state) const { return state.stress; }
+  double stored_energy(const State& state) const {
+    return half_compliance_product(state.stress, state.stress, p_.bulk_modulus_Pa, p_.shear_modulus_Pa);
+  }
+  // The plastic work (the hardening energy included, as is usual for isotropic hardening).
+  DissipationParts dissipation(const State& state) const { return {state.plastic_work, 0.0}; }
   double yield_stress(double plastic_strain) const {
     return p_.yield_stress_Pa + p_.hardening_modulus_Pa * plastic_strain;
   }

@@ -32,7 +32,28 @@ struct Moduli {
   double deviatoric_return = 1.0;
   double along_deviator_return = 0.0;
   bool pressure_fixed = false;
+  // The factor (1 - d+) by which the law's split hands the solver the positive principal part of its
+  // effective stress (eq. 21; 1 when the law does not split): the gradient, kept as an effective
+  // gradient, is mapped through the same split (StressGradientReturn::nominal).
+  double tension_factor = 1.0;
 };
+
+// What a law has dissipated so far, per unit reference volume (J/m^3), by mechanism. The rest of the
+// dissipation (what the stress power put in minus what stays stored, EnergyLedger) is what the law
+// released without booking it: damage.
+struct DissipationParts {
+  double plastic = 0.0;   // deviatoric plastic work
+  double crushing = 0.0;  // work of pore collapse on the hydrostat (volumetric plastic work)
+};
+
+// Half the complementary energy product 1/2 a : C^-1 : b of an isotropic compliance (K, G): with
+// a = b the elastic energy per unit volume a stress holds; with a the stress handed to the solver and b
+// the law's effective stress, the free energy of eq. 21, 1/2 sigma : eps_e.
+inline double half_compliance_product(const Mat3& a, const Mat3& b, double K, double G) {
+  const double ta = a.trace(), tb = b.trace();
+  const double dev = a.cwiseProduct(b).sum() - ta * tb / 3.0;  // s_a : s_b
+  return 0.5 * (ta * tb / (9.0 * K) + dev / (2.0 * G));
+}
 
 inline double pressure_of(const Mat3& stress) { return -stress.trace() / 3.0; }  // > 0 in compression
 

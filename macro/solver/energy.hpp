@@ -1,8 +1,15 @@
 #pragma once
 // Energy and momentum accounts of a run, updated every step.
 //   kinetic      sum 1/2 m v^2 at the end of the step
-//   internal     integral of the stress power sum V sigma : D dt (stored elastic + material dissipation)
-//   material_dissipated   part of `internal` the laws report as dissipated (plastic work, damage)
+//   internal     integral of the stress power sum V sigma : D dt plus the NSNI stabilization power
+//   stabilization   the NSNI part of `internal`; stabilization_stored of it is held by the gradient
+//                stresses now (sum M/2 sigma_,d : C^-1 : sigma_,d with the law's moduli), the rest is
+//                dissipated by their return
+//   material_stored   elastic (free) energy the laws hold now, sum V Law::stored_energy
+//   material_dissipated   the rest of the material's stress work: internal - stabilization -
+//                material_stored, dissipated by the laws; of it plastic and crushing are what the laws
+//                book (Law::dissipation), released() the remainder: energy a law gave up without
+//                booking it (damage: the tension released by d+, the drop of the cutoff)
 //   viscous      work of the artificial bulk viscosity (dissipated)
 //   external     work of the external forces (walls, reactions of prescribed velocities)
 //   contact      energy taken by the sphere contact: minus the work of the contact forces on the
@@ -21,7 +28,11 @@ struct EnergyLedger {
   double kinetic_initial = 0.0;
   double internal = 0.0;
   double stabilization = 0.0;  // NSNI part of `internal`
+  double stabilization_stored = 0.0;
+  double material_stored = 0.0;
   double material_dissipated = 0.0;
+  double plastic = 0.0;
+  double crushing = 0.0;
   double viscous = 0.0;
   double external = 0.0;
   double contact = 0.0;
@@ -32,6 +43,8 @@ struct EnergyLedger {
   std::array<double, 3> momentum_initial{};
   std::array<double, 3> external_impulse{};
 
+  double released() const { return material_dissipated - plastic - crushing; }
+  double stabilization_dissipated() const { return stabilization - stabilization_stored; }
   double balance_error() const { return kinetic + internal + viscous + contact - external - kinetic_initial; }
 };
 

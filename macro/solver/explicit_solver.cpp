@@ -63,7 +63,7 @@ StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& for
       }
       update_stress(block, p, i, dt, viscosity, sums);
       InternalForce::add_row(shapes, i, p.stress.data(), p.bulk_q.data(), p.volume.data(),
-                             nsni ? p.stress_grad.data() : nullptr, buf);
+                             nsni ? p.force_stress_grad().data() : nullptr, buf);
     }
     force.finish(p.n, p.f_int.data());
     add_sums(sums, work, visc, stab, dt_min, inverted);
@@ -98,6 +98,8 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
   if (options_.stabilization == Stabilization::Nsni) {
     p_.stress_grad.assign(27 * p_.n, 0.0);
     p_.vel_grad_grad.assign(27 * p_.n, 0.0);
+    if (std::visit([](const auto& b) { return b.law.splits_stress(); }, material_))
+      p_.stress_grad_nominal.assign(27 * p_.n, 0.0);
   }
   if (options_.strain_configuration == StrainConfiguration::EndpointAverage) {
     vel_grad_start_.assign(9 * p_.n, 0.0);
@@ -139,17 +141,16 @@ void ExplicitSolver::initialize() {
       },
       material_);
   if (sphere_) {
-    sphere_contact_stiffness(p_, sphere_->contact, contact_k_);
-    min_contact_radius_ = HUGE_VAL;
-    for (std::size_t i = 0; i < p_.n; ++i)
-      min_contact_radius_ = std::min(min_contact_radius_, sphere_->contact.contact_radius_factor * p_.spacing[i]);
+    sphere_contact_.initialize(*sphere_, p_);
+    // The first contact forces are predicted over the first step: bound it before they are computed.
+    dt_ = std::min(dt_, options_.cfl * sphere_contact_.travel_limit(*sphere_));
   }
   domain_ = options_.domain ? *options_.domain : default_domain();
   constrain_velocities();
   p_.x_prev = p_.x;
   rebuild_shapes(p_.x.data());
   shapes_at_x_ = true;
-  compute_forces(dt());
+  compute_forces(0.0, dt());  // no step has produced this configuration yet
   if (sphere_) dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
   f_ext_old_ = p_.f_ext;
   f_contact_old_ = p_.f_contact;
@@ -246,7 +247,12 @@ void ExplicitSolver::compute_accelerations(double dt) {
     rebuild_shapes(p_.x.data());
     shapes_at_x_ = true;
   }
-  compute_forces(dt, config == StrainConfiguration::Midpoint);
+  // The next step as far as it is known now (the contact's travel limit may lower it; the kinematic
+  // contact predicts the next configuration with it).
+  double dt_next = dt_;
+  if (options_.fixed_dt_s > 0) dt_next = options_.fixed_dt_s;
+  else if (sphere_) dt_next = std::min(dt_next, options_.cfl * sphere_contact_.travel_limit(*sphere_));
+  compute_forces(dt, dt_next, config == StrainConfiguration::Midpoint);
   if (sphere_) {
     dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
     // Work of the contact pair forces over the step (trapezoid), on the particles and on the sphere;
@@ -281,10 +287,10 @@ void ExplicitSolver::compute_accelerations(double dt) {
   std::copy(p_.f_ext.begin(), p_.f_ext.end(), f_ext_old_.begin());
 }
 
-void ExplicitSolver::compute_forces(double dt, bool internal) {
+void ExplicitSolver::compute_forces(double dt, double dt_next, bool internal) {
   if (internal)
     force_.compute(shapes_, p_.stress.data(), p_.bulk_q.data(), p_.volume.data(), p_.n, p_.f_int.data(),
-                   p_.stress_grad.empty() ? nullptr : p_.stress_grad.data());
+                   p_.stress_grad.empty() ? nullptr : p_.force_stress_grad().data());
   const std::int64_t n = static_cast<std::int64_t>(p_.n);
   double wall_total = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : wall_total) if (n >= kParallelMinParticles)
@@ -304,7 +310,7 @@ void ExplicitSolver::compute_forces(double dt, bool internal) {
   }
   wall_force_ = wall_total;
   if (sphere_) {
-    contact_ = sphere_contact_forces(*sphere_, p_, contact_k_.data(), min_contact_radius_, dt, p_.f_contact.data());
+    contact_ = sphere_contact_.compute(*sphere_, p_, dt, dt_next, p_.f_contact.data());
     sphere_->force = contact_.force_on_sphere;
   }
   // Prescribed velocities: the reaction cancels every other force (constant velocity, a = 0), so the
@@ -340,11 +346,49 @@ void ExplicitSolver::update_momentum_and_kinetic() {
   }
   ledger_.kinetic = ke;
   ledger_.momentum = {px, py, pz};
-  ledger_.material_dissipated = std::visit(
+  update_material_books();
+}
+
+void ExplicitSolver::update_material_books() {
+  const std::int64_t n = static_cast<std::int64_t>(p_.n);
+  const bool nsni = !p_.stress_grad.empty();
+  double stored = 0.0, plastic = 0.0, crushing = 0.0, stab = 0.0;
+  std::visit(
       [&](const auto& block) {
-        double sum = 0.0;
-        for (std::size_t i = 0; i < p_.n; ++i) sum += block.law.dissipated_energy(block.state[i]) * p_.volume0[i];
-        return sum;
+#pragma omp parallel for schedule(static) reduction(+ : stored, plastic, crushing, stab) if (n >= kParallelMinParticles)
+        for (std::int64_t i = 0; i < n; ++i) {
+          const auto& st = block.state[static_cast<std::size_t>(i)];
+          stored += block.law.stored_energy(st) * p_.volume[i];
+          const DissipationParts parts = block.law.dissipation(st);
+          plastic += parts.plastic * p_.volume0[i];
+          crushing += parts.crushing * p_.volume0[i];
+          if (nsni) stab += stabilization_energy(block.law.moduli(st), i);
+        }
+      },
+      material_);
+  ledger_.material_stored = stored;
+  ledger_.material_dissipated = ledger_.internal - ledger_.stabilization - stored;
+  ledger_.plastic = plastic;
+  ledger_.crushing = crushing;
+  ledger_.stabilization_stored = stab;
+}
+
+double ExplicitSolver::stabilization_energy(const Moduli& mod, std::int64_t i) const {
+  using RowMat = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
+  const double v = p_.volume[i];
+  const double moment = std::cbrt(v * v * v * v * v) / 12.0;
+  const std::vector<double>& force = p_.force_stress_grad();
+  double e = 0.0;
+  for (int d = 0; d < 3; ++d)
+    e += half_compliance_product(RowMat(force.data() + 27 * i + 9 * d), RowMat(p_.stress_grad.data() + 27 * i + 9 * d),
+                                 mod.bulk_Pa, mod.shear_Pa);
+  return moment * e;
+}
+
+double ExplicitSolver::dissipated_density(std::size_t i) const {
+  return std::visit(
+      [&](const auto& block) {
+        return (p_.work[i] - block.law.stored_energy(block.state[i]) * p_.volume[i]) / p_.volume0[i];
       },
       material_);
 }
@@ -449,7 +493,8 @@ void copy_same_size(const std::vector<double>& from, std::vector<double>& to) {
 void copy_evolving_state(const Particles& from, Particles& to) {
   for (auto field : {&Particles::x, &Particles::v, &Particles::a, &Particles::f_int, &Particles::f_ext,
                      &Particles::f_contact, &Particles::volume, &Particles::density, &Particles::stress,
-                     &Particles::bulk_q, &Particles::wave_speed, &Particles::stress_grad})
+                     &Particles::bulk_q, &Particles::wave_speed, &Particles::work, &Particles::stress_grad,
+                     &Particles::stress_grad_nominal})
     copy_same_size(from.*field, to.*field);
 }
 }  // namespace

@@ -124,6 +124,9 @@ class ExplicitSolver {
   bool has_sphere() const { return sphere_.has_value(); }
   const RigidSphere& sphere() const { return *sphere_; }  // requires has_sphere()
   const SphereContactSums& contact() const { return contact_; }  // last force evaluation
+  // Energy particle i has dissipated so far per unit reference volume (J/m^3): its stress work minus
+  // the energy its law holds (EnergyLedger::material_dissipated per particle).
+  double dissipated_density(std::size_t i) const;
 
   // The physics interface of velocity_verlet_step.
   VerletArrays verlet_arrays() { return {p_.x.data(), p_.x_prev.data(), p_.v.data(), p_.a.data(), 3 * p_.n}; }
@@ -132,10 +135,13 @@ class ExplicitSolver {
 
  private:
   const SecondGradientOptions* second_options() const;  // null without NSNI
-  // f_int, f_ext and a at the current configuration (shapes_ up to date); dt: the step (friction's cap).
+  // f_int, f_ext and a at the current configuration (shapes_ up to date); dt: the step that produced
+  // it (friction's cap; 0 at the start), dt_next: the next step (the kinematic contact's prediction).
   // internal false: f_int is already there (computed with the stress update, compute_accelerations).
-  void compute_forces(double dt, bool internal = true);
+  void compute_forces(double dt, double dt_next, bool internal = true);
   void update_momentum_and_kinetic();
+  void update_material_books();  // the material and stabilization parts of the ledger
+  double stabilization_energy(const Moduli& mod, std::int64_t i) const;  // held by particle i's gradients
   StepFailure attempt(double h);  // one velocity Verlet step of size h and the checks
   void save_state();
   Region default_domain() const;
@@ -160,8 +166,7 @@ class ExplicitSolver {
   std::vector<double> f_ext_old_, f_contact_old_;
   std::optional<RigidSphere> sphere_;
   Vec3 sphere_force_old_{};
-  std::vector<double> contact_k_;  // penalty stiffness per particle, fixed at initialize()
-  double min_contact_radius_ = 0.0;
+  SphereContact sphere_contact_;  // the contact model and its scratch, set up at initialize()
   SphereContactSums contact_;
   Region domain_;
   EnergyLedger ledger_;

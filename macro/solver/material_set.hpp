@@ -2,8 +2,10 @@
 // The material of a body: one law and the per-particle states it owns, held in a std::variant so the
 // solver visits it once per particle loop and the loop body is a direct (inlinable) call, never a
 // virtual one. A new law (the AFC concrete model) is one more alternative here; it needs the members
-// every law has: State with a `stress` (Mat3), update(State&, MaterialStep), wave_speed(State,
-// density_ratio), stress_free(State, density_ratio), reference_density() and dissipated_energy(State).
+// every law has: State with a `stress` (Mat3, the stress the solver integrates), update(State&,
+// MaterialStep), rotate(State&, R) (every objective tensor of the state), wave_speed(State,
+// density_ratio), stress_free(State, density_ratio), reference_density(), moduli(State),
+// effective_stress(State), stored_energy(State) and dissipation(State).
 #include <cstddef>
 #include <variant>
 #include <vector>

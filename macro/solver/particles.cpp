@@ -32,6 +32,7 @@ Particles Particles::from_body(const ParticleBody& body, double density_kg_m3, d
   p.bulk_q.assign(n, 0.0);
   p.vel_grad.assign(9 * n, 0.0);
   p.wave_speed.assign(n, 0.0);
+  p.work.assign(n, 0.0);
   return p;
 }
 

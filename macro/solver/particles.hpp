@@ -32,10 +32,18 @@ struct Particles {
   std::vector<double> bulk_q;   // artificial bulk viscosity pressure (n), Pa
   std::vector<double> vel_grad; // velocity gradient L = dv/dx at the particle (9n), 1/s
   std::vector<double> wave_speed;  // current material wave speed c_I (n), m/s
+  std::vector<double> work;     // stress work done on the particle so far, sum V sigma : D dt (n), J
   // NSNI (only sized when the stabilization is on): per particle and direction d, the gradient
   // d(sigma)/dx_d of the stabilization stress and d(L)/dx_d, as 3 row-major 3x3 blocks (27n).
   std::vector<double> stress_grad;
   std::vector<double> vel_grad_grad;
+  // With a law that splits its stress (eq. 21): stress_grad is the effective gradient and this its
+  // split, the one the forces use (27n; empty otherwise).
+  std::vector<double> stress_grad_nominal;
+  // The gradient the NSNI forces use.
+  const std::vector<double>& force_stress_grad() const {
+    return stress_grad_nominal.empty() ? stress_grad : stress_grad_nominal;
+  }
 
   // Allocates every field for the particles of `body` at rest, with density rho0 and a_I = factor h_I.
   static Particles from_body(const ParticleBody& body, double density_kg_m3, double support_factor);

@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <Eigen/Dense>
+
 #include "solver/parallel.hpp"
 
 namespace uhpc::macro {
@@ -21,20 +23,67 @@ void RigidSphere::validate() const {
       throw std::invalid_argument("RigidSphere: position and velocity must be finite");
 }
 
-void sphere_contact_stiffness(const Particles& p, const SphereContactOptions& options, std::vector<double>& k) {
-  k.resize(p.n);
+void SphereContact::initialize(const RigidSphere& sphere, const Particles& p) {
+  k_.resize(p.n);
+  min_contact_radius_ = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.n; ++i) {
     // rho0 c0^2 with rho0 = m / V0: the reference stiffness, whatever the current state.
     const double rho0 = p.mass[i] / p.volume0[i];
-    k[i] = options.penalty_scale * rho0 * p.wave_speed[i] * p.wave_speed[i] * p.spacing[i];
+    k_[i] = sphere.contact.penalty_scale * rho0 * p.wave_speed[i] * p.wave_speed[i] * p.spacing[i];
+    min_contact_radius_ = std::min(min_contact_radius_, sphere.contact.contact_radius_factor * p.spacing[i]);
+  }
+  flagged_.assign(p.n, 0);
+  // Room for the particles a shell of one contact diameter around the sphere can hold, several times
+  // over (debris piles up), so the candidate lists do not grow during a run.
+  double r_max = 0.0, h_min = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < p.n; ++i) {
+    r_max = std::max(r_max, sphere.contact.contact_radius_factor * p.spacing[i]);
+    h_min = std::min(h_min, p.spacing[i]);
+  }
+  const double outer = sphere.radius_m + 2.0 * r_max;
+  const double shell = 4.0 * std::acos(-1.0) / 3.0 * outer * outer * outer;
+  const std::size_t room = std::min(p.n, static_cast<std::size_t>(8.0 * shell / (h_min * h_min * h_min)) + 64);
+  candidates_.reserve(room);
+  gap_.reserve(room);
+  normal_.reserve(3 * room);
+  force_.reserve(room);
+  active_.reserve(room);
+}
+
+double SphereContact::travel_limit(const RigidSphere& sphere) const {
+  const double speed = std::sqrt(sphere.v[0] * sphere.v[0] + sphere.v[1] * sphere.v[1] + sphere.v[2] * sphere.v[2]);
+  return speed > 0.0 ? min_contact_radius_ / speed : std::numeric_limits<double>::infinity();
+}
+
+SphereContactSums SphereContact::compute(const RigidSphere& sphere, const Particles& p, double dt, double dt_next,
+                                         double* f_contact) {
+  SphereContactSums sums = sphere.contact.model == SphereContactModel::Penalty
+                               ? penalty(sphere, p, dt, f_contact)
+                               : kinematic(sphere, p, dt, dt_next, f_contact);
+  sums.critical_step = std::min(sums.critical_step, travel_limit(sphere));
+  return sums;
+}
+
+void SphereContact::add_friction(const RigidSphere& s, const Particles& p, std::size_t i, const double* n,
+                                 double normal_force, double dt, double* f) {
+  const double* v = p.v.data() + 3 * i;
+  double w[3], wn = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    w[c] = v[c] - s.v[c];
+    wn += w[c] * n[c];
+  }
+  for (int c = 0; c < 3; ++c) w[c] -= wn * n[c];  // tangential part
+  const double wt = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  if (wt > 0.0) {
+    const double ft = std::min(s.contact.friction_coefficient * normal_force, p.mass[i] * wt / dt);
+    for (int c = 0; c < 3; ++c) f[c] -= ft * w[c] / wt;
   }
 }
 
-SphereContactSums sphere_contact_forces(const RigidSphere& s, const Particles& p, const double* k,
-                                        double min_contact_radius, double dt, double* f_contact) {
+SphereContactSums SphereContact::penalty(const RigidSphere& s, const Particles& p, double dt, double* f_contact) const {
   const std::int64_t n = static_cast<std::int64_t>(p.n);
   double fx = 0.0, fy = 0.0, fz = 0.0, energy = 0.0, ksum = 0.0;
-  const double mu = s.contact.friction_coefficient;
+  const bool friction = s.contact.friction_coefficient > 0.0;
   double dt_min = std::numeric_limits<double>::infinity();
   std::int64_t count = 0;
   const double reach_factor = s.contact.contact_radius_factor;
@@ -51,38 +100,120 @@ SphereContactSums sphere_contact_forces(const RigidSphere& s, const Particles& p
     if (d2 >= reach * reach || d2 == 0.0) continue;
     const double d = std::sqrt(d2);
     const double delta = reach - d;
-    const double magnitude = k[i] * delta;
-    for (int c = 0; c < 3; ++c) f[c] = magnitude * r[c] / d;
-    if (mu > 0.0) {
-      const double* v = p.v.data() + 3 * i;
-      double w[3], wn = 0.0;
-      for (int c = 0; c < 3; ++c) {
-        w[c] = v[c] - s.v[c];
-        wn += w[c] * r[c] / d;
-      }
-      for (int c = 0; c < 3; ++c) w[c] -= wn * r[c] / d;  // tangential part
-      const double wt = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-      if (wt > 0.0) {
-        const double ft = std::min(mu * magnitude, p.mass[i] * wt / dt);
-        for (int c = 0; c < 3; ++c) f[c] -= ft * w[c] / wt;
-      }
-    }
+    const double magnitude = k_[i] * delta;
+    const double normal[3] = {r[0] / d, r[1] / d, r[2] / d};
+    for (int c = 0; c < 3; ++c) f[c] = magnitude * normal[c];
+    if (friction) add_friction(s, p, static_cast<std::size_t>(i), normal, magnitude, dt, f);
     fx -= f[0];
     fy -= f[1];
     fz -= f[2];
-    energy += 0.5 * k[i] * delta * delta;
-    ksum += k[i];
+    energy += 0.5 * k_[i] * delta * delta;
+    ksum += k_[i];
     ++count;
-    dt_min = std::min(dt_min, 2.0 * std::sqrt(p.mass[i] / k[i]));
+    dt_min = std::min(dt_min, 2.0 * std::sqrt(p.mass[i] / k_[i]));
   }
   SphereContactSums sums;
   sums.force_on_sphere = {fx, fy, fz};
   sums.stored_energy = energy;
-  sums.stiffness_sum = ksum;
   sums.particles_in_contact = count;
   sums.critical_step = count > 0 ? std::min(dt_min, 2.0 * std::sqrt(s.mass_kg / ksum)) : dt_min;
-  const double speed = std::sqrt(s.v[0] * s.v[0] + s.v[1] * s.v[1] + s.v[2] * s.v[2]);
-  if (speed > 0.0) sums.critical_step = std::min(sums.critical_step, min_contact_radius / speed);
+  return sums;
+}
+
+SphereContactSums SphereContact::kinematic(const RigidSphere& s, const Particles& p, double dt, double dt_next,
+                                           double* f_contact) {
+  const std::int64_t n = static_cast<std::int64_t>(p.n);
+  // The forces act over the second half kick of this step and the first of the next, so they move the
+  // position after the next drift by dt2 = dt_next (dt + dt_next) / 2 per unit acceleration; the drift
+  // itself is dt_next times the current (mid-step) velocity.
+  const double dt2 = 0.5 * dt_next * (dt + dt_next);
+  const double xs[3] = {s.x[0] + dt_next * s.v[0], s.x[1] + dt_next * s.v[1], s.x[2] + dt_next * s.v[2]};
+  const double reach_factor = s.contact.contact_radius_factor;
+  // 1. Candidates: the particles whose predicted centre comes within one contact radius of touching
+  // (a margin for the sphere's own correction), in index order whatever the threads.
+#pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
+  for (std::int64_t i = 0; i < n; ++i) {
+    double* f = f_contact + 3 * i;
+    f[0] = f[1] = f[2] = 0.0;
+    const double r_i = reach_factor * p.spacing[i];
+    double d2 = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double a = (p.f_int[3 * i + c] + p.f_ext[3 * i + c]) / p.mass[i];
+      const double x = p.x[3 * i + c] + dt_next * p.v[3 * i + c] + dt2 * a;
+      d2 += (x - xs[c]) * (x - xs[c]);
+    }
+    const double limit = s.radius_m + 2.0 * r_i;
+    flagged_[i] = d2 < limit * limit;
+  }
+  candidates_.clear();
+  for (std::int64_t i = 0; i < n; ++i)
+    if (flagged_[i]) candidates_.push_back(static_cast<std::int32_t>(i));
+  const std::size_t m = candidates_.size();
+  gap_.resize(m);
+  normal_.resize(3 * m);
+  force_.resize(m);
+  active_.resize(m);
+  for (std::size_t c = 0; c < m; ++c) {
+    const std::size_t i = static_cast<std::size_t>(candidates_[c]);
+    double r[3], d2 = 0.0, now2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double a = (p.f_int[3 * i + k] + p.f_ext[3 * i + k]) / p.mass[i];
+      r[k] = p.x[3 * i + k] + dt_next * p.v[3 * i + k] + dt2 * a - xs[k];
+      d2 += r[k] * r[k];
+      now2 += (p.x[3 * i + k] - s.x[k]) * (p.x[3 * i + k] - s.x[k]);
+    }
+    const double d = std::sqrt(d2), reach = s.radius_m + reach_factor * p.spacing[i];
+    // The gap to close: an overlap left by a change of the step (the prediction assumes the next step
+    // equals this one) is held, not pushed out, so the contact never throws a particle off.
+    gap_[c] = (d - reach) - std::min(0.0, std::sqrt(now2) - reach);
+    // A predicted centre at the sphere's centre has no direction: push it along the sphere's motion.
+    for (int k = 0; k < 3; ++k) normal_[3 * c + k] = d > 0.0 ? r[k] / d : (k == 2 ? 1.0 : 0.0);
+    active_[c] = gap_[c] < 0.0;
+  }
+  // 2. The active set: the forces that close every predicted gap of the active particles, the sphere
+  // recoiling under their sum S. Particles pulled (F < 0) leave; particles the recoil meets join.
+  const double M = s.mass_kg;
+  Eigen::Vector3d S = Eigen::Vector3d::Zero();
+  for (int iteration = 0; iteration < 64; ++iteration) {
+    Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (std::size_t c = 0; c < m; ++c) {
+      if (!active_[c]) continue;
+      const Eigen::Vector3d nc(normal_.data() + 3 * c);
+      const double mass = p.mass[static_cast<std::size_t>(candidates_[c])];
+      A += (mass / M) * nc * nc.transpose();
+      b += (-mass * gap_[c] / dt2) * nc;
+    }
+    S = A.ldlt().solve(b);
+    bool changed = false;
+    for (std::size_t c = 0; c < m; ++c) {
+      const Eigen::Vector3d nc(normal_.data() + 3 * c);
+      const double recoil = nc.dot(S) / M;  // the sphere's correction seen along n, per dt^2
+      if (active_[c]) {
+        force_[c] = p.mass[static_cast<std::size_t>(candidates_[c])] * (-gap_[c] / dt2 - recoil);
+        if (force_[c] < 0.0) active_[c] = 0, changed = true;
+      } else if (gap_[c] + dt2 * recoil < 0.0) {
+        active_[c] = 1, changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  // 3. The pair forces (and friction), equal and opposite.
+  SphereContactSums sums;
+  sums.critical_step = std::numeric_limits<double>::infinity();
+  const bool friction = s.contact.friction_coefficient > 0.0;
+  double on_sphere[3] = {0.0, 0.0, 0.0};
+  for (std::size_t c = 0; c < m; ++c) {
+    if (!active_[c] || !(force_[c] > 0.0)) continue;
+    const std::size_t i = static_cast<std::size_t>(candidates_[c]);
+    double* f = f_contact + 3 * i;
+    const double* nc = normal_.data() + 3 * c;
+    for (int k = 0; k < 3; ++k) f[k] = force_[c] * nc[k];
+    if (friction) add_friction(s, p, i, nc, force_[c], 0.5 * (dt + dt_next), f);  // the kicks' duration
+    for (int k = 0; k < 3; ++k) on_sphere[k] -= f[k];
+    ++sums.particles_in_contact;
+  }
+  sums.force_on_sphere = {on_sphere[0], on_sphere[1], on_sphere[2]};
   return sums;
 }
 

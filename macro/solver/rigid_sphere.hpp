@@ -1,35 +1,48 @@
 #pragma once
-// The projectile: a free rigid sphere (mass, radius, position, velocity) in penalty contact with the
-// particles, frictionless by default (PHYSICS.md section 5), Coulomb friction as an option.
+// The projectile: a free rigid sphere (mass, radius, position, velocity) in contact with the particles,
+// frictionless by default (PHYSICS.md section 5), Coulomb friction as an option.
 //
-// Contact model (penalty; the normal force first, friction below). Each particle I carries a contact radius r_I =
-// contact_radius_factor * h_I (default h_I / 2: the particle's half spacing, so the body's surface and
-// not its particle centres meets the sphere, as for the planar walls). With d = |x_I - x_s| and the
-// overlap delta_I = R + r_I - d > 0, the pair force
-//     f_I = k_I delta_I n_I on the particle,  -f_I on the sphere,  n_I = (x_I - x_s) / d,
-// is equal and opposite by construction, so the contact conserves linear momentum exactly (to
-// round-off); it is central (along the line of centres), so it exerts no torque on the sphere, whose
-// spin is therefore not tracked. The stiffness
-//     k_I = penalty_scale * rho0 c0^2 h_I
-// is the stiffness of a cube of the undeformed material of side h_I (contact frequency sqrt(k/m_I) =
-// c0/h_I, within the stable step at scale 1) and is FIXED per particle when the solver initializes:
-// the contact is then the gradient of the potential sum 1/2 k_I delta_I^2, exactly conservative
-// whatever the law does to the current wave speed; the energy it holds is stored, never lost.
-// Friction (option, friction_coefficient mu > 0; 0 by default). On top of the normal force, each pair
-// gets a Coulomb force against the tangential part w_t of the relative velocity w = v_I - v_s (at the
-// mid-step, where the forces are evaluated):
-//     f_t = -min(mu |f_I|, m_I |w_t| / dt) w_t / |w_t|  on the particle,  -f_t on the sphere.
+// Each particle I has a contact radius r_I = contact_radius_factor * h_I (default h_I / 2: the
+// particle's half spacing, so the body's surface and not its particle centres meets the sphere, as for
+// the planar walls); it touches the sphere when d_I = |x_I - x_s| < R + r_I. Every pair force is equal
+// and opposite and central (along the line of centres n_I = (x_I - x_s) / d_I), so the contact conserves
+// linear momentum exactly (to round-off) and exerts no torque on the sphere, whose spin is not tracked.
+//
+// Normal contact, two models (SphereContactModel):
+// - Kinematic (default): inelastic in the normal direction, as the paper's kernel contact through the
+//   bodies' velocity fields is (a struck particle moves on with the sphere; it is not thrown ahead).
+//   The forces are the smallest that keep every particle out of the sphere at the next configuration
+//   (predictor-corrector contact, after Taylor and Flanagan's PRONTO). The forces of this evaluation
+//   act over the second half kick of the step dt just taken and the first half kick of the next step
+//   dt' (known here: the material's and the travel limit's stable step), so without contact forces the
+//   particles and the sphere would reach, after the next drift,
+//     x_I* = x_I + dt' v_I + k a_I,   x_s* = x_s + dt' v_s,   k = dt' (dt + dt') / 2
+//   (v the mid-step velocities, a_I the internal and wall forces only), with the gaps
+//   g_I* = |x_I* - x_s*| - (R + r_I). The normal forces F_I >= 0 (on I along n_I, on the sphere
+//   -F_I n_I) change the gaps by k (F_I / m_I + n_I . S / M), S = sum_J F_J n_J, and are the solution
+//   of the complementarity problem g_I >= 0, F_I >= 0, F_I g_I = 0: on the active set (the particles
+//   that would penetrate) F_I = m_I (-g_I* / k - n_I . S / M), which makes S the solution of one 3x3
+//   system (I + sum m_I n_I n_I^T / M) S = sum m_I n_I (-g_I* / k); particles
+//   with F_I < 0 leave the set, particles the corrected sphere still meets join it, until it settles.
+//   A particle then ends the step on the sphere's surface with the sphere's normal velocity
+//   (restitution 0): never faster than the sphere allows. An overlap already there (left by a change
+//   of the step, since the prediction assumes the next step equals this one) is held, not pushed out. The contact stores no energy; the work of
+//   its forces (the ledger's contact account) is what the inelastic impacts dissipate. It sets no
+//   stable step of its own beyond the travel limit below.
+// - Penalty (option, the earlier model): f_I = k_I delta_I n_I, delta_I = R + r_I - d_I > 0, with
+//   k_I = penalty_scale rho0 c0^2 h_I (a cube of the undeformed material of side h_I) FIXED per particle
+//   at initialize(): the gradient of the potential sum 1/2 k_I delta_I^2, elastic (restitution 1 for a
+//   free particle: it leaves at up to twice the sphere's speed). Stable step 2 sqrt(m_I / k_I) per
+//   particle in contact and 2 sqrt(M / sum k_I) for the sphere.
+// Friction (option, friction_coefficient mu > 0; 0 by default). On top of the normal force F_I, each
+// pair gets a Coulomb force against the tangential part w_t of the relative velocity w = v_I - v_s (at
+// the mid-step, where the forces are evaluated):
+//     f_t = -min(mu F_I, m_I |w_t| / dt) w_t / |w_t|  on the particle,  -f_t on the sphere.
 // The cap m_I |w_t| / dt is sticking: the force never does more than stop the relative sliding within
-// one step, which keeps the explicit update stable without a regularising slip velocity. Still equal
-// and opposite, so linear momentum stays exact; its work, f_t . w dt <= 0, is dissipated and lands in
-// the contact energy of the ledger (contact - contact_stored is then the friction loss). The torque
-// on the sphere is not applied (its spin is not tracked): zero by symmetry for a normal impact on the
-// axis, an approximation otherwise.
-// The stable step of the contact: 2 sqrt(m_I / k_I) per particle in contact and 2 sqrt(M / sum k_I)
-// for the sphere (velocity Verlet is stable for omega dt < 2), and, so that the sphere cannot pass
-// through a particle's contact radius between two steps (contact is detected at positions only), the
-// time it takes to travel the smallest contact radius, min r_I / |v_s|. The solver takes the smallest
-// of these and the material step before applying its CFL factor.
+// one step. Its work, f_t . w dt <= 0, is dissipated and lands in the contact energy of the ledger. The
+// torque on the sphere is not applied: zero by symmetry for a normal impact on the axis.
+// Both models also limit the step so that the sphere cannot pass through a particle's contact radius
+// between two steps: the time it takes to travel the smallest contact radius, min r_I / |v_s|.
 #include <cstdint>
 #include <vector>
 
@@ -38,8 +51,11 @@
 
 namespace uhpc::macro {
 
+enum class SphereContactModel : std::uint8_t { Kinematic, Penalty };
+
 struct SphereContactOptions {
-  double penalty_scale = 1.0;          // k_I = penalty_scale * rho0 c0^2 h_I
+  SphereContactModel model = SphereContactModel::Kinematic;
+  double penalty_scale = 1.0;          // Penalty: k_I = penalty_scale * rho0 c0^2 h_I
   double contact_radius_factor = 0.5;  // r_I = contact_radius_factor * h_I
   double friction_coefficient = 0.0;   // Coulomb mu (0: frictionless)
 };
@@ -62,20 +78,40 @@ struct RigidSphere {
 // What one contact evaluation found.
 struct SphereContactSums {
   Vec3 force_on_sphere{};            // N
-  double stored_energy = 0.0;        // sum 1/2 k_I delta_I^2, J
-  double stiffness_sum = 0.0;        // sum of k_I over the particles in contact, N/m
-  double critical_step = 0.0;        // s (infinity when nothing touches)
-  std::int64_t particles_in_contact = 0;
+  double stored_energy = 0.0;        // sum 1/2 k_I delta_I^2 (penalty), J; 0 for the kinematic contact
+  double critical_step = 0.0;        // s (infinity when nothing limits it)
+  std::int64_t particles_in_contact = 0;  // pairs with a force
 };
 
-// Penalty stiffness k_I of every particle (n values) for `options`, from the reference density and the
-// current (initial) wave speeds in `p`.
-void sphere_contact_stiffness(const Particles& p, const SphereContactOptions& options, std::vector<double>& k);
+class SphereContact {
+ public:
+  // Fixes the penalty stiffness from the reference density and the current (initial) wave speeds, and
+  // the smallest contact radius; sizes the scratch (no allocation in the steps after).
+  void initialize(const RigidSphere& sphere, const Particles& p);
+  // The contact force of every particle into f_contact (3n; zero where there is none), with the
+  // particles' internal and external forces already in p.f_int and p.f_ext (the kinematic model
+  // predicts the motion they cause). The forces act over the second half kick of the step dt that
+  // produced this configuration (0 at the start: there is none) and the first half kick of the next
+  // step dt_next, after which the particles drift by dt_next times their velocity.
+  SphereContactSums compute(const RigidSphere& sphere, const Particles& p, double dt, double dt_next,
+                            double* f_contact);
+  // The time the sphere takes to travel the smallest contact radius (a bound of the step).
+  double travel_limit(const RigidSphere& sphere) const;
 
-// Writes the contact force of every particle into f_contact (3n; zero where there is no contact) and
-// returns the sums. `k` from sphere_contact_stiffness.
-// `min_contact_radius` is the smallest r_I (for the travel limit); `dt` the step (friction's sticking cap).
-SphereContactSums sphere_contact_forces(const RigidSphere& sphere, const Particles& p, const double* k,
-                                        double min_contact_radius, double dt, double* f_contact);
+ private:
+  SphereContactSums penalty(const RigidSphere& sphere, const Particles& p, double dt, double* f_contact) const;
+  SphereContactSums kinematic(const RigidSphere& sphere, const Particles& p, double dt, double dt_next,
+                              double* f_contact);
+  // Adds the Coulomb force of pair i with normal force `normal_force` along the unit normal n.
+  static void add_friction(const RigidSphere& s, const Particles& p, std::size_t i, const double* n,
+                           double normal_force, double dt, double* f);
+
+  std::vector<double> k_;                // penalty stiffness per particle
+  double min_contact_radius_ = 0.0;
+  std::vector<unsigned char> flagged_;   // kinematic: would penetrate without contact forces
+  std::vector<std::int32_t> candidates_;
+  std::vector<double> gap_, normal_, force_;  // per candidate (normal: 3 each)
+  std::vector<unsigned char> active_;
+};
 
 }  // namespace uhpc::macro

@@ -8,10 +8,16 @@
 //   objective to second order and a step run backwards (L -> -L) undoes it to round-off;
 //   V <- V exp(tr D dt) (exactly reversible too), rho = m / V;
 //   bulk viscosity q and the particle's critical step from the new wave speed.
+// The law rotates every objective tensor of its state (Law::rotate: the stress, and for AFC its
+// effective and driver stresses), so the law itself stays a small-strain update.
 // NSNI (when Particles::stress_grad is sized): each direction's stabilization stress gradient is
-// rotated the same way, advanced with the law's isotropic moduli, dsigma_,d = C : sym(L_,d) dt, and
-// returned with the stress by the law's return mapping (nsni_gradient_return.hpp); its power
-// M sigma_,d : D_,d V-weighted like the stress power (M = V^(5/3) / 12).
+// rotated the same way, advanced with the law's isotropic moduli (the current tangent),
+// dsigma_,d = C : sym(L_,d) dt, and returned with the stress by the law's return mapping
+// (nsni_gradient_return.hpp); its power M sigma_,d : D_,d V-weighted like the stress power
+// (M = V^(5/3) / 12). For a law that splits its stress (eq. 21, Particles::stress_grad_nominal sized)
+// stress_grad is the effective gradient and the forces use its split, stress_grad_nominal.
+// Each particle's stress work is also summed into Particles::work (its dissipation is that work minus
+// the energy the law says it stores).
 // Stress power is integrated with the trapezoid rule in the co-rotated frame, 0.5 (s_a + s_b) : D dt V_mid,
 // which is exact for a linear law: the internal energy of an elastic body is then its strain energy.
 #include <algorithm>
@@ -57,23 +63,24 @@ void update_stress(Block& block, Particles& p, std::int64_t i, double dt, const 
   if (!(v_new > 0.0) || !std::isfinite(v_new)) sums.inverted = std::max(sums.inverted, i);
 
   auto& state = block.state[static_cast<std::size_t>(i)];
-  const Mat3 s_a = R * state.stress * R.transpose();
-  state.stress = s_a;
+  block.law.rotate(state, R);
+  const Mat3 s_a = state.stress;
   MaterialStep step;
   step.strain_increment = D * dt;
   step.dt_s = dt;
   step.density_ratio = p.volume0[i] / v_new;
   step.spacing_m = p.spacing[i];
   block.law.update(state, step);
-  sums.stress_work += 0.5 * (s_a + state.stress).cwiseProduct(D).sum() * dt * v_mid;
-  const Mat3 s_b = state.stress;  // the law's result, in the frame of the NSNI gradients below
-  state.stress = R * s_b * R.transpose();
-  Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.stress.data() + 9 * i) = state.stress;
+  const double work = 0.5 * (s_a + state.stress).cwiseProduct(D).sum() * dt * v_mid;
+  sums.stress_work += work;
+  p.work[i] += work;
   if (nsni) {
+    // In the frame of the law's update (before the second half rotation), like the stress.
     const Moduli mod = block.law.moduli(state);
-    const StressGradientReturn gradient_return(s_b, mod);
+    const StressGradientReturn gradient_return(block.law.effective_stress(state), mod);
     const double lambda = mod.bulk_Pa - 2.0 / 3.0 * mod.shear_Pa;
     const double moment = std::cbrt(v_mid * v_mid * v_mid * v_mid * v_mid) / 12.0;
+    const bool split = !p.stress_grad_nominal.empty();
     for (int d = 0; d < 3; ++d) {
       const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> G(p.vel_grad_grad.data() + 27 * i + 9 * d);
       Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> sg(p.stress_grad.data() + 27 * i + 9 * d);
@@ -81,10 +88,20 @@ void update_stress(Block& block, Particles& p, std::int64_t i, double dt, const 
       const Mat3 g_a = R * sg * R.transpose();
       Mat3 g_b = g_a + (lambda * Dd.trace() * I + 2.0 * mod.shear_Pa * Dd) * dt;
       gradient_return.apply(g_b);
-      sums.stabilization_work += moment * 0.5 * (g_a + g_b).cwiseProduct(Dd).sum() * dt;
       sg = R * g_b * R.transpose();
+      if (split) {  // the gradient the forces use: the split of the effective one
+        Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> sn(p.stress_grad_nominal.data() + 27 * i + 9 * d);
+        const Mat3 n_a = R * sn * R.transpose();
+        const Mat3 n_b = gradient_return.nominal(g_b);
+        sums.stabilization_work += moment * 0.5 * (n_a + n_b).cwiseProduct(Dd).sum() * dt;
+        sn = R * n_b * R.transpose();
+      } else {
+        sums.stabilization_work += moment * 0.5 * (g_a + g_b).cwiseProduct(Dd).sum() * dt;
+      }
     }
   }
+  block.law.rotate(state, R);
+  Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.stress.data() + 9 * i) = state.stress;
 
   p.volume[i] = v_new;
   p.density[i] = p.mass[i] / v_new;

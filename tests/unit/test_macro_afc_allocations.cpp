@@ -1,6 +1,6 @@
 // AfcMaterial::update allocates nothing (it runs inside the solver's particle loop): counted through
 // the global operator new of this test program, over elastic, plastic, crushing and cracking steps,
-// with and without the tensile-stress degradation option.
+// with both couplings of d+ (eq. 21's split and the cutoff) and both tensile strain measures.
 #include <gtest/gtest.h>
 
 #include "allocation_counter.hpp"
@@ -14,9 +14,10 @@ namespace uhpc::macro {
 namespace {
 
 TEST(AfcAllocations, UpdateAllocatesNothing) {
-  for (bool degrade : {false, true}) {
+  for (bool split : {false, true}) {
     AfcParams p = load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json");
-    p.options.degrade_tensile_stress = degrade;
+    p.options.tensile_degradation = split ? TensileDegradation::Split : TensileDegradation::Cutoff;
+    p.strain_measure = split ? TensileStrainMeasure::EffectiveTensile : TensileStrainMeasure::Mazars;
     const AfcMaterial law(p);
     AfcMaterial::State s;
     MaterialStep step;
@@ -34,7 +35,7 @@ TEST(AfcAllocations, UpdateAllocatesNothing) {
       step.density_ratio = ratio;
       law.update(s, step);
     }
-    EXPECT_EQ(g_allocations.load() - before, 0) << degrade;
+    EXPECT_EQ(g_allocations.load() - before, 0) << split;
     EXPECT_GT(s.mu_max, p.C7);
     EXPECT_EQ(s.d_plus, 1.0);
   }

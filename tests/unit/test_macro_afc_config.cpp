@@ -27,12 +27,12 @@ TEST(AfcConfig, ShippedFilesGiveTable6AndTheHandoff) {
   EXPECT_EQ(p.reference_strain_rate_1_s, 1e-4);
   EXPECT_EQ(p.sdel.chi, 4.1e6);
   EXPECT_EQ(p.l_mac_m, 0.4064);
-  EXPECT_EQ(p.strain_measure, TensileStrainMeasure::Mazars);
+  EXPECT_EQ(p.strain_measure, TensileStrainMeasure::EffectiveTensile);
   // The defaults of every option.
   EXPECT_EQ(p.options.rate_factor_floor, 1.0);
   EXPECT_FALSE(p.options.cap_strength_with_c5);
   EXPECT_EQ(p.options.damage_eps_min, 0.01);
-  EXPECT_FALSE(p.options.degrade_tensile_stress);
+  EXPECT_EQ(p.options.tensile_degradation, TensileDegradation::Split);
   EXPECT_FALSE(p.options.sdel_zero_anchored);
   EXPECT_EQ(p.options.tensile_damage, TensileDamage::Sdel);
   EXPECT_FALSE(p.options.wave_speed_from_unloading_modulus);
@@ -43,12 +43,12 @@ TEST(AfcConfig, OptionsBlockIsRead) {
   const AfcParams p = load_afc_params(
       kAfc, kSdel,
       {"options.rate_factor_floor=0", "options.cap_strength_with_c5=true", "options.damage_eps_min=0.02",
-       "options.degrade_tensile_stress=true", "options.sdel_zero_anchored=true", "options.tensile_damage=off",
+       "options.tensile_degradation=cutoff", "options.sdel_zero_anchored=true", "options.tensile_damage=off",
        "options.wave_speed_from_unloading_modulus=true"});
   EXPECT_EQ(p.options.rate_factor_floor, 0.0);
   EXPECT_TRUE(p.options.cap_strength_with_c5);
   EXPECT_EQ(p.options.damage_eps_min, 0.02);
-  EXPECT_TRUE(p.options.degrade_tensile_stress);
+  EXPECT_EQ(p.options.tensile_degradation, TensileDegradation::Cutoff);
   EXPECT_TRUE(p.options.sdel_zero_anchored);
   EXPECT_EQ(p.options.tensile_damage, TensileDamage::Off);
   EXPECT_TRUE(p.options.wave_speed_from_unloading_modulus);

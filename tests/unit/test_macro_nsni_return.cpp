@@ -75,14 +75,16 @@ TEST(NsniGradientReturn, AfcReportsItsReturnFactorAndTheTensileCutoff) {
   const AfcMaterial::State& st = pt.state();
   ASSERT_GT(st.plastic_strain, 0.0);
   // The last step's trial deviator exceeded S by one elastic increment: S / q_trial = S / (S + 3G dg/2 ...).
-  const double S = von_mises(st.stress);
+  const double S = von_mises(st.effective_stress);  // the strength bounds the effective stress
   const double q_trial = S + 2.0 * p.shear_modulus_Pa * std::sqrt(1.5 * 2.0) * 0.5e-5;
   EXPECT_NEAR(law.moduli(st).deviatoric_return, S / q_trial, 1e-9);
   // Expansion past the tensile cutoff: the pressure is held at -Tmax (1 - d+).
   PointDriver<AfcMaterial> open(law, 0.003);
   open.volumetric_step_to(-1e-3, 1e-6);
   EXPECT_TRUE(law.moduli(open.state()).pressure_fixed);
-  EXPECT_NEAR(pressure_of(open.state().stress), -p.Tmax_Pa * (1.0 - open.state().d_plus), 1e-6 * p.Tmax_Pa);
+  // (with the split the cutoff is the undamaged -Tmax on the effective stress; d+ acts through the split)
+  EXPECT_NEAR(pressure_of(open.state().effective_stress), -p.Tmax_Pa, 1e-6 * p.Tmax_Pa);
+  EXPECT_EQ(law.moduli(open.state()).tension_factor, 1.0 - open.state().d_plus);
 }
 
 // The returned gradient is the derivative of the law's own update: for a state on the strength surface,
@@ -153,6 +155,90 @@ TEST(NsniGradientReturn, IsTheLinearisedReturnOfAfcAtFixedPressureAndRate) {
   de(1, 1) = -1e-6;
   const Mat3 delta = deviator(perturbation());
   expect_return_is_the_derivative_of_the_update(law, pt.state(), de, delta, dt, 0.0, p.shear_modulus_Pa);
+}
+
+// In crushing the gradient's pressure follows the hydrostat's tangent: the mean stress the law's update
+// gives a perturbed volumetric increment, (sigma_m(de + eps delta) - sigma_m(de)) / eps, equals
+// K tr(delta) with K = Moduli::bulk_Pa, while loading on the crushing curve (its slope, about a third of
+// K_e) and while unloading below it (K_u).
+void expect_bulk_is_the_derivative_of_the_pressure(const AfcMaterial& law, const AfcMaterial::State& state,
+                                                   double density_ratio, double dmu) {
+  const Mat3 de = -std::log((1.0 + dmu) / (1.0 + (density_ratio - 1.0))) / 3.0 * Mat3::Identity();
+  const Mat3 delta = -1e-3 * Mat3::Identity();  // a little more compression
+  const double eps = 1e-4 * de.norm();
+  MaterialStep a, b;
+  a.strain_increment = de;
+  b.strain_increment = de + eps * delta;
+  a.dt_s = b.dt_s = 1.0;
+  a.spacing_m = b.spacing_m = 0.003;
+  a.density_ratio = density_ratio * std::exp(-de.trace());
+  b.density_ratio = density_ratio * std::exp(-b.strain_increment.trace());
+  AfcMaterial::State sa = state, sb = state;
+  law.update(sa, a);
+  law.update(sb, b);
+  const double fd = (sb.stress.trace() - sa.stress.trace()) / 3.0 / eps;
+  const double K = law.moduli(sa).bulk_Pa;
+  EXPECT_NEAR(fd, K * delta.trace(), 1e-4 * K * std::fabs(delta.trace()));
+}
+
+TEST(NsniGradientReturn, AfcBulkModulusIsTheHydrostatTangentInCrushing) {
+  const AfcParams p = load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json");
+  const AfcMaterial law(p);
+  PointDriver<AfcMaterial> pt(law, 0.003);
+  for (int i = 1; i <= 300; ++i) pt.volumetric_step_to(0.03 * i / 300.0, 1.0);
+  ASSERT_GT(pt.state().mu_max, p.C7);
+  // Loading on the curve: the crushing slope, well below the unloading modulus the gradient used before.
+  expect_bulk_is_the_derivative_of_the_pressure(law, pt.state(), pt.density_ratio(), 0.0301);
+  AfcMaterial::State loading = pt.state();
+  law.update(loading, MaterialStep{-std::log(1.0301 / 1.03) / 3.0 * Mat3::Identity(), 1.0, 1.0301, 0.003});
+  EXPECT_LT(law.moduli(loading).bulk_Pa, 0.5 * law.hydrostat().unloading_modulus(0.0301));
+  // Unloading below mu_max: K_u.
+  pt.volumetric_step_to(0.028, 1.0);
+  expect_bulk_is_the_derivative_of_the_pressure(law, pt.state(), pt.density_ratio(), 0.0279);
+}
+
+// Eq. 21's split: the gradient the forces use is the first-order image of the effective gradient
+// through the split, (split(sigma_e(de + eps delta)) - split(sigma_e(de))) / eps, at a state whose
+// history strain is not exceeded (d+ fixed) and with tensile and compressive principal stresses.
+TEST(NsniGradientReturn, TheSplitOfTheGradientIsTheDerivativeOfTheSplitStress) {
+  const AfcParams p = load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json");
+  const AfcMaterial law(p);
+  PointDriver<AfcMaterial> pt(law, 0.003);
+  Mat3 stretch = Mat3::Zero();
+  stretch(0, 0) = 2e-6;
+  stretch(1, 1) = -1e-6;
+  stretch(0, 1) = stretch(1, 0) = 4e-7;
+  for (int i = 0; i < 180; ++i) pt.strain_step(stretch, 1.0);
+  for (int i = 0; i < 20; ++i) pt.strain_step(-stretch, 1.0);  // below the history maximum: d+ fixed
+  const AfcMaterial::State at = pt.state();
+  ASSERT_GT(at.d_plus, 0.2);
+  ASSERT_LT(at.d_plus, 0.95);
+  const Mat3 de = -0.5 * stretch;
+  const Mat3 delta = perturbation();
+  const double eps = 1e-4 * de.norm();
+  MaterialStep a, b;
+  a.strain_increment = de;
+  b.strain_increment = de + eps * delta;
+  a.dt_s = b.dt_s = 1.0;
+  a.spacing_m = b.spacing_m = 0.003;
+  a.density_ratio = pt.density_ratio() * std::exp(-de.trace());
+  b.density_ratio = pt.density_ratio() * std::exp(-b.strain_increment.trace());
+  AfcMaterial::State sa = at, sb = at;
+  law.update(sa, a);
+  law.update(sb, b);
+  ASSERT_EQ(sa.d_plus, at.d_plus);
+  ASSERT_EQ(sb.d_plus, at.d_plus);
+  ASSERT_EQ(law.moduli(sa).deviatoric_return, 1.0);  // elastic: the effective gradient is C : delta
+  const double K = p.C6_Pa / p.C7, G = p.shear_modulus_Pa;
+  const Mat3 fd_effective = (sb.effective_stress - sa.effective_stress) / eps;
+  const Mat3 fd_nominal = (sb.stress - sa.stress) / eps;
+  const Mat3 g = K * delta.trace() * Mat3::Identity() + 2.0 * G * deviator(delta);
+  EXPECT_LT((fd_effective - g).norm(), 1e-4 * g.norm());
+  const Moduli mod = law.moduli(sa);
+  ASSERT_EQ(mod.tension_factor, 1.0 - at.d_plus);
+  const Mat3 nominal = StressGradientReturn(law.effective_stress(sa), mod).nominal(fd_effective);
+  EXPECT_LT((nominal - fd_nominal).norm(), 1e-4 * fd_nominal.norm());
+  EXPECT_GT((fd_nominal - fd_effective).norm(), 0.1 * fd_nominal.norm());  // the split does act
 }
 
 }  // namespace

@@ -81,7 +81,7 @@ TEST(SdelHandoff, OptionalBlocksMayBeAbsent) {
   d.erase("law");
   d.erase("strain_measure");
   const uhpc::SdelHandoff h = uhpc::sdel_handoff_from_json(d, "sdel.json");
-  EXPECT_EQ(h.strain_measure, "mazars_equivalent_tensile");  // the default
+  EXPECT_EQ(h.strain_measure, "effective_tensile_strain");  // the default
   EXPECT_FALSE(h.provenance.has_value());
   EXPECT_TRUE(h.fit.is_object());
   EXPECT_TRUE(h.fit.empty());
@@ -94,7 +94,7 @@ TEST(SdelHandoff, PaperFileGivesTable4) {
   EXPECT_EQ(h.constants.nu, 120.5);
   EXPECT_EQ(h.constants.chi, 4.1e6);
   EXPECT_EQ(h.l_mac_m, 0.4064);
-  EXPECT_EQ(h.strain_measure, "mazars_equivalent_tensile");
+  EXPECT_EQ(h.strain_measure, "effective_tensile_strain");
   EXPECT_EQ(h.cell_sizes_m, (std::vector<double>{0.003, 0.0045, 0.005, 0.0065}));
   EXPECT_FALSE(h.source.empty());
   EXPECT_TRUE(h.fit.contains("notes"));
@@ -152,8 +152,8 @@ TEST(SdelHandoff, BadStrainMeasure) {
   json d = valid_document();
   d["strain_measure"] = "von_mises";
   EXPECT_EQ(error_of(d),
-            "sdel.json: key 'strain_measure': value 'von_mises' is not one of: mazars_equivalent_tensile, "
-            "max_principal_tensile");
+            "sdel.json: key 'strain_measure': value 'von_mises' is not one of: effective_tensile_strain, "
+            "mazars_equivalent_tensile, max_principal_tensile");
 }
 
 TEST(SdelHandoff, MalformedProvenance) {

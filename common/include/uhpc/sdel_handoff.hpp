@@ -7,7 +7,7 @@
 //     "law": "d = 1 / (1 + nu exp(-lambda chi (e - e_i))), ...",  optional, informative only
 //     "constants": {"a": 1.0, "A": 0.0002, "nu": 120.5, "chi": 4.1e6},   required, each > 0
 //     "l_mac_m": 0.4064,                                    required, > 0
-//     "strain_measure": "mazars_equivalent_tensile",        optional, one of kSdelStrainMeasures
+//     "strain_measure": "effective_tensile_strain",         optional, one of the kSdelStrain* below
 //     "cell_sizes_m": [0.003, 0.0045, 0.005, 0.0065],       required, each > 0
 //     "source": "...",                                      required, where the constants came from
 //     "fit": {...},                                         optional object, free-form
@@ -28,9 +28,14 @@ namespace uhpc {
 inline constexpr std::string_view kSdelFormat = "uhpc-sdel/1";
 
 // The equivalent tensile strain the law is driven by.
-//   mazars_equivalent_tensile (default): sqrt(sum of squared positive principal strains);
-//   max_principal_tensile: the largest principal strain, taken as 0 when negative.
-// Both equal the axial strain in the microcells' uniaxial tension.
+//   effective_tensile_strain (default): sqrt(sum of squared positive principal strains) of the elastic
+//     strain produced by the positive principal effective stresses, C^-1 : <sigma_bar>+ (the conjugate
+//     of the tensile free energy of eqs. 21-23; zero in uniaxial compression);
+//   mazars_equivalent_tensile: sqrt(sum of squared positive principal strains) of the total strain
+//     (counts Poisson and plastic lateral expansion under compression as tension);
+//   max_principal_tensile: the largest principal total strain, taken as 0 when negative.
+// All three equal the axial strain in the microcells' uniaxial tension.
+inline constexpr std::string_view kSdelStrainEffectiveTensile = "effective_tensile_strain";
 inline constexpr std::string_view kSdelStrainMazars = "mazars_equivalent_tensile";
 inline constexpr std::string_view kSdelStrainMaxPrincipal = "max_principal_tensile";
 
@@ -42,7 +47,7 @@ inline constexpr std::string_view kSdelLawText =
 struct SdelHandoff {
   SdelConstants<double> constants{};
   double l_mac_m = 0.4064;
-  std::string strain_measure{kSdelStrainMazars};
+  std::string strain_measure{kSdelStrainEffectiveTensile};
   std::vector<double> cell_sizes_m;
   nlohmann::json fit = nlohmann::json::object();  // rms per size, covariance, ... or notes
   std::string source;
