@@ -53,7 +53,8 @@ ProjectileSettings read_projectile(const Config& p) {
 
 SupportSettings read_support(const Config& s) {
   SupportSettings out;
-  out.fixed_rim = s.choice("rim", {"free", "fixed"}) == "fixed";
+  const std::string rim = s.choice("rim", {"free", "fixed", "frame"});
+  out.rim = rim == "fixed" ? SupportSettings::Rim::Fixed : rim == "frame" ? SupportSettings::Rim::Frame : SupportSettings::Rim::Free;
   out.rim_width_m = s.number("rim_width_m", Range::positive());
   return out;
 }
@@ -62,7 +63,7 @@ RunSettings read_run(const Config& r) {
   RunSettings s;
   s.end_time_s = r.number("end_time_s", Range::positive());
   s.output_interval_steps = r.integer("output_interval_steps", Range::at_least(1));
-  s.stop_after_exit_s = r.number("stop_after_exit_s", Range::any());
+  s.stop_after_outcome_s = r.number("stop_after_outcome_s", Range::any());
   return s;
 }
 
@@ -103,8 +104,8 @@ CaseSettings read_case(const Config& cfg) {
                              : s.target.disc.radius_m;
   if (s.projectile.radius_m >= lateral)
     cfg.section("projectile").fail("radius_m", "the sphere must be smaller than the target's half width");
-  if (s.support.fixed_rim && s.support.rim_width_m >= lateral)
-    cfg.section("support").fail("rim_width_m", "the fixed rim would cover the whole target");
+  if (s.support.rim != SupportSettings::Rim::Free && s.support.rim_width_m >= lateral)
+    cfg.section("support").fail("rim_width_m", "the rim band would cover the whole target");
   return s;
 }
 

@@ -31,15 +31,24 @@ struct ProjectileSettings {
   SphereContactOptions contact;
 };
 
+// How the target's rim is held (support.rim):
+//   free   nothing holds it;
+//   fixed  the rim band's particles are held at zero velocity;
+//   frame  the experiment's steel frame: the impact-side lips and the exit-side plate as two rigid,
+//          frictionless walls over the rim band, at the band's outermost particle surfaces at rest, so
+//          the band cannot move along the axis either way but slides freely in its plane.
+// The rim band: particles within rim_width_m of the lateral boundary.
 struct SupportSettings {
-  bool fixed_rim = false;      // "free" (default of the shipped cases) or "fixed"
-  double rim_width_m = 0.0;    // particles within this distance of the lateral boundary are held fixed
+  enum class Rim : std::uint8_t { Free, Fixed, Frame } rim = Rim::Free;
+  double rim_width_m = 0.0;
 };
 
 struct RunSettings {
   double end_time_s = 0.0;
   std::int64_t output_interval_steps = 0;  // fields every N steps (and the first and last state)
-  double stop_after_exit_s = -1.0;         // < 0: run to end_time_s; else stop this long after the exit
+  // < 0: run to end_time_s; else stop this long after the outcome is decided (ImpactTracker: the sphere
+  // perforated, stopped in the target or rebounded)
+  double stop_after_outcome_s = -1.0;
 };
 
 struct CaseSettings {

@@ -1,5 +1,6 @@
 #include "case_setup.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -17,7 +18,7 @@ ParticleBody make_target_body(const TargetSettings& t) {
 
 std::vector<std::int32_t> rim_particles(const Particles& p, const CaseSettings& s) {
   std::vector<std::int32_t> out;
-  if (!s.support.fixed_rim) return out;
+  if (s.support.rim == SupportSettings::Rim::Free) return out;
   const double w = s.support.rim_width_m;
   for (std::size_t i = 0; i < p.n; ++i) {
     const double x = p.x[3 * i], y = p.x[3 * i + 1];
@@ -30,6 +31,25 @@ std::vector<std::int32_t> rim_particles(const Particles& p, const CaseSettings& 
     if (rim) out.push_back(static_cast<std::int32_t>(i));
   }
   return out;
+}
+
+std::vector<Wall> frame_walls(const Particles& p, const std::vector<std::int32_t>& band) {
+  // The lips (impact side: the solid is below them) and the plate (exit side: the solid is above it)
+  // touch the band's outermost particle surfaces, z -+ h/2, so nothing is pressed at rest.
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const std::int32_t j : band) {
+    const std::size_t i = static_cast<std::size_t>(j);
+    lo = std::min(lo, p.x[3 * i + 2] - 0.5 * p.spacing[i]);
+    hi = std::max(hi, p.x[3 * i + 2] + 0.5 * p.spacing[i]);
+  }
+  Wall lips, plate;
+  lips.point = {0.0, 0.0, lo};
+  lips.normal = {0.0, 0.0, 1.0};
+  lips.particles = band;
+  plate.point = {0.0, 0.0, hi};
+  plate.normal = {0.0, 0.0, -1.0};
+  plate.particles = band;
+  return {lips, plate};
 }
 
 RigidSphere make_projectile(const ProjectileSettings& s) {
@@ -45,9 +65,14 @@ RigidSphere make_projectile(const ProjectileSettings& s) {
 ExplicitSolver make_solver(const CaseSettings& s, const ParticleBody& body, MaterialSet material) {
   const double rho = reference_density(material);
   ExplicitSolver solver(Particles::from_body(body, rho, s.solver.support_factor), std::move(material), s.solver);
-  PrescribedVelocity rim;
-  rim.particles = rim_particles(solver.particles(), s);
-  if (!rim.particles.empty()) solver.add_prescribed_velocity(rim);
+  const std::vector<std::int32_t> band = rim_particles(solver.particles(), s);
+  if (s.support.rim == SupportSettings::Rim::Fixed) {
+    PrescribedVelocity rim;
+    rim.particles = band;
+    solver.add_prescribed_velocity(rim);
+  } else if (s.support.rim == SupportSettings::Rim::Frame) {
+    for (const Wall& w : frame_walls(solver.particles(), band)) solver.add_wall(w);
+  }
   solver.set_sphere(make_projectile(s.projectile));
   solver.initialize();
   return solver;

@@ -9,9 +9,13 @@ namespace uhpc::macro {
 
 ParticleBody make_target_body(const TargetSettings& target);
 
-// Particles of `body` held fixed by a fixed rim: within rim_width of the lateral boundary (|x| or |y|
-// near the box's sides; r near the disc's radius). Empty for a free rim.
+// The rim band held by a fixed or framed rim: particles within rim_width of the lateral boundary (|x|
+// or |y| near the box's sides; r near the disc's radius). Empty for a free rim.
 std::vector<std::int32_t> rim_particles(const Particles& p, const CaseSettings& s);
+
+// The frame (support.rim = frame): the impact-side lips and the exit-side plate, two rigid frictionless
+// walls over the band, each touching the band's outermost particle surface at rest.
+std::vector<Wall> frame_walls(const Particles& p, const std::vector<std::int32_t>& band);
 
 // The projectile at rest position: on the axis, its surface initial_gap_m below the entry face.
 RigidSphere make_projectile(const ProjectileSettings& s);

@@ -31,9 +31,11 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
   const double vi = impact.impact_velocity_m_s, vf = s.sphere().v[2];
   nlohmann::json r = {
       {"impact_velocity_m_s", vi},
-      {"perforated", impact.perforated},
-      {"rebounded", impact.rebounded},
+      {"outcome", to_string(impact.outcome)},
+      {"perforated", impact.perforated()},
+      {"rebounded", impact.rebounded()},
       {"residual_velocity_m_s", nullptr},
+      {"outcome_time_s", nullptr},
       {"exit_time_s", nullptr},
       {"velocity_reduction", nullptr},
       {"kinetic_energy_reduction", nullptr},
@@ -77,10 +79,11 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
         {"worst_balance_error", balance.worst_momentum}}},
       {"energy_partition", energy_partition_json(s.ledger())},
       {"provenance", provenance.to_json()}};
-  if (impact.finished()) {
+  if (impact.decided()) {
     const double vr = impact.residual_velocity_m_s;
     r["residual_velocity_m_s"] = vr;
-    r["exit_time_s"] = impact.exit_time_s;
+    r["outcome_time_s"] = impact.outcome_time_s;
+    if (impact.perforated() || impact.rebounded()) r["exit_time_s"] = impact.outcome_time_s;
     r["velocity_reduction"] = (vi - vr) / vi;
     r["kinetic_energy_reduction"] = (vi * vi - vr * vr) / (vi * vi);
   }
@@ -116,6 +119,7 @@ void run_macro(const MacroRunArgs& args) {
   ImpactTracker impact;
   impact.thickness_m = settings.target.thickness_m();
   impact.impact_velocity_m_s = settings.projectile.velocity_m_s;
+  for (const double m : solver.particles().mass) impact.target_mass_kg += m;
   BalanceTracker balance;
   fields.write(solver);
   history.add(solver);
@@ -157,11 +161,15 @@ void run_macro(const MacroRunArgs& args) {
       progress.advance(now_ns - done_ns);
       done_ns = now_ns;
     }
-    if (impact.finished() && settings.run.stop_after_exit_s >= 0 &&
-        solver.time() >= impact.exit_time_s + settings.run.stop_after_exit_s)
+    if (impact.decided() && settings.run.stop_after_outcome_s >= 0 &&
+        solver.time() >= impact.outcome_time_s + settings.run.stop_after_outcome_s)
       break;
   }
   progress.finish();
+  if (!impact.decided())
+    spdlog::warn("outcome undecided: the sphere is still moving in the target at the end time ({:.1f} us, v_z = {:.2f} "
+                 "m/s); run.end_time_s is too short to decide this shot",
+                 solver.time() * 1e6, solver.sphere().v[2]);
   const double wall = elapsed();
   fields.write(solver);
   history.save(args.out / "history.csv");
@@ -171,7 +179,7 @@ void run_macro(const MacroRunArgs& args) {
                "balance {:.2e}, momentum balance {:.2e}",
                solver.steps(), solver.step_repeats(), wall, result["particle_steps_per_s"].get<double>(),
                solver.sphere().v[2],
-               impact.perforated ? "perforated" : (impact.rebounded ? "rebounded" : "still in the target"),
+               impact.decided() ? to_string(impact.outcome) : "undecided: still moving in the target at the end time",
                BalanceTracker::energy_error(solver), balance.worst_momentum);
 }
 

@@ -66,21 +66,35 @@ void History::add(const ExplicitSolver& s) {
 
 void History::save(const std::filesystem::path& file) const { write_text_atomic(file, text_); }
 
+const char* to_string(ImpactOutcome outcome) {
+  switch (outcome) {
+    case ImpactOutcome::Perforated: return "perforated";
+    case ImpactOutcome::Embedded: return "embedded";
+    case ImpactOutcome::Rebounded: return "rebounded";
+    case ImpactOutcome::Undecided: break;
+  }
+  return "undecided";
+}
+
 void ImpactTracker::update(const ExplicitSolver& s) {
-  if (finished()) return;
+  if (decided()) return;
   const RigidSphere& sp = s.sphere();
+  const EnergyLedger& e = s.ledger();
   const bool free = s.contact().particles_in_contact == 0;
-  // Perforated once the sphere's centre has crossed the exit face and no particle touches it: from
+  const double target_vz = (e.momentum[2] - e.momentum_sphere[2]) / target_mass_kg;
+  // Perforated once the sphere's centre has crossed the exit face and no particle pushes it: from
   // there on it flies free (its rear needs another radius of travel, up to 25 us at the lowest
   // residual speeds, in which nothing changes its velocity).
   if (free && sp.x[2] > thickness_m && sp.v[2] > 0) {
-    perforated = true;
+    outcome = ImpactOutcome::Perforated;
   } else if (free && sp.x[2] + sp.radius_m < 0.0 && sp.v[2] < 0) {
-    rebounded = true;
+    outcome = ImpactOutcome::Rebounded;
+  } else if (sp.v[2] <= target_vz && sp.x[2] > 0.0) {
+    outcome = ImpactOutcome::Embedded;
   } else {
     return;
   }
-  exit_time_s = s.time();
+  outcome_time_s = s.time();
   residual_velocity_m_s = sp.v[2];
 }
 

@@ -5,9 +5,9 @@
 //                  per reference volume (dissipated_J_m3), and the law's own fields (Law::output_fields(),
 //                  dimensionless)
 //   History        history.csv, one row per step: time, projectile, contact, energies, momentum
-//   ImpactTracker  impact and residual velocity: the sphere's axial velocity at the first step at which
-//                  it is past the exit face (its rear surface beyond z = T) and touches no particle
-//                  (PHYSICS.md section 5); also a rebound (back past the entry face, moving away)
+//   ImpactTracker  the outcome (perforated, embedded, rebounded, undecided) and the residual velocity: the
+//                  sphere's axial velocity at the first step at which it is past the exit face and no
+//                  particle pushes it (PHYSICS.md section 5)
 //   BalanceTracker the worst energy and momentum balance errors over the run
 #include <cstdint>
 #include <filesystem>
@@ -48,14 +48,29 @@ class History {
   std::size_t rows_ = 0;
 };
 
+// How the shot ended (result.json "outcome").
+enum class ImpactOutcome { Undecided, Perforated, Embedded, Rebounded };
+const char* to_string(ImpactOutcome outcome);
+
+// Decides the outcome of the shot, step by step:
+//   perforated  the sphere's centre is past the exit face, it moves on and no particle pushes it;
+//   embedded    it has stopped relative to the target (axial velocity <= that of the target's centre of
+//               mass) with its centre past the entry face: it can no longer perforate;
+//   rebounded   it is back out of the entry face, moving back, and no particle pushes it (a sphere
+//               that stops before its centre has passed the entry face is followed until then);
+//   undecided   none of these by the end time (reported, never taken for a perforation).
+// The residual velocity is the sphere's axial velocity when the outcome was decided.
 struct ImpactTracker {
   double thickness_m = 0.0;
   double impact_velocity_m_s = 0.0;
-  bool perforated = false, rebounded = false;
-  double exit_time_s = -1.0;         // perforation or rebound
+  double target_mass_kg = 0.0;
+  ImpactOutcome outcome = ImpactOutcome::Undecided;
+  double outcome_time_s = -1.0;
   double residual_velocity_m_s = 0.0;
   void update(const ExplicitSolver& solver);
-  bool finished() const { return perforated || rebounded; }
+  bool decided() const { return outcome != ImpactOutcome::Undecided; }
+  bool perforated() const { return outcome == ImpactOutcome::Perforated; }
+  bool rebounded() const { return outcome == ImpactOutcome::Rebounded; }
 };
 
 struct BalanceTracker {

@@ -35,11 +35,14 @@ PrescribedVelocity prescribe_velocity(const Particles& p, const Region& region, 
 //   f = k_I delta normal,  delta = h_I / 2 - (x - point) . normal > 0,  k_I = penalty_scale rho_I c_I^2 h_I
 // is the stiffness of a cube of material of side h_I, so the contact is as stiff as the body and the
 // contact frequency c/h stays within the stable step. The force is conservative: the energy stored
-// during contact returns at release, and the wall's work is booked as external work.
+// during contact returns at release, and the wall's work is booked as external work. A wall with a
+// list of particles acts on those only (a support over part of the body, e.g. the frame's lips over
+// the rim band of a disc); an empty list means every particle.
 struct Wall {
   Vec3 point{};
   Vec3 normal{1, 0, 0};
   double penalty_scale = 1.0;
+  std::vector<std::int32_t> particles;
 };
 
 // Sets v_I = velocity(x_I) for the particles in `region` (all with an empty function is not allowed).

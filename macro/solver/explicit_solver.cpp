@@ -293,21 +293,27 @@ void ExplicitSolver::compute_forces(double dt, double dt_next, bool internal) {
                    p_.stress_grad.empty() ? nullptr : p_.force_stress_grad().data());
   const std::int64_t n = static_cast<std::int64_t>(p_.n);
   double wall_total = 0.0;
+  // The force of wall w on particle i (added to fe), its magnitude returned.
+  const auto wall_force = [&](const Wall& w, std::size_t i, double* fe) {
+    const double* x = p_.x.data() + 3 * i;
+    double gap = 0.0;
+    for (int d = 0; d < 3; ++d) gap += (x[d] - w.point[d]) * w.normal[d];
+    const double delta = 0.5 * p_.spacing[i] - gap;
+    if (delta <= 0.0) return 0.0;
+    const double k = w.penalty_scale * p_.density[i] * p_.wave_speed[i] * p_.wave_speed[i] * p_.spacing[i];
+    for (int d = 0; d < 3; ++d) fe[d] += k * delta * w.normal[d];
+    return k * delta;
+  };
 #pragma omp parallel for schedule(static) reduction(+ : wall_total) if (n >= kParallelMinParticles)
   for (std::int64_t i = 0; i < n; ++i) {
     double* fe = p_.f_ext.data() + 3 * i;
     fe[0] = fe[1] = fe[2] = 0.0;
-    for (const Wall& w : walls_) {
-      const double* x = p_.x.data() + 3 * i;
-      double gap = 0.0;
-      for (int d = 0; d < 3; ++d) gap += (x[d] - w.point[d]) * w.normal[d];
-      const double delta = 0.5 * p_.spacing[i] - gap;
-      if (delta <= 0.0) continue;
-      const double k = w.penalty_scale * p_.density[i] * p_.wave_speed[i] * p_.wave_speed[i] * p_.spacing[i];
-      for (int d = 0; d < 3; ++d) fe[d] += k * delta * w.normal[d];
-      wall_total += k * delta;
-    }
+    for (const Wall& w : walls_)
+      if (w.particles.empty()) wall_total += wall_force(w, static_cast<std::size_t>(i), fe);
   }
+  for (const Wall& w : walls_)  // supports over part of the body, one wall after the other
+    for (const std::int32_t j : w.particles)
+      wall_total += wall_force(w, static_cast<std::size_t>(j), p_.f_ext.data() + 3 * static_cast<std::size_t>(j));
   wall_force_ = wall_total;
   if (sphere_) {
     contact_ = sphere_contact_.compute(*sphere_, p_, dt, dt_next, p_.f_contact.data());

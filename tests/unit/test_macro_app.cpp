@@ -102,18 +102,20 @@ TEST(MacroCaseSetup, RimParticlesAreThoseWithinTheRimWidth) {
   s.target.shape = TargetSettings::Shape::Box;
   s.target.box_size_m = {0.048, 0.048, 0.016};
   s.target.box_spacing_m = 0.004;
-  s.support.fixed_rim = true;
+  s.support.rim = SupportSettings::Rim::Fixed;
   s.support.rim_width_m = 0.004;
   const ParticleBody body = make_target_body(s.target);
   const Particles p = Particles::from_body(body, 2500.0, 2.0);
   EXPECT_EQ(rim_particles(p, s).size(), (12u * 12u - 10u * 10u) * 4u);  // the outer ring of the 12 x 12 layers
-  s.support.fixed_rim = false;
+  s.support.rim = SupportSettings::Rim::Frame;  // the frame holds the same band
+  EXPECT_EQ(rim_particles(p, s).size(), (12u * 12u - 10u * 10u) * 4u);
+  s.support.rim = SupportSettings::Rim::Free;
   EXPECT_TRUE(rim_particles(p, s).empty());
 
   CaseSettings d;
   d.target.shape = TargetSettings::Shape::Disc;
   d.target.disc = DiscSpec{0.05, 0.01, 0.0, 0.005, 0.005, 0.0};
-  d.support.fixed_rim = true;
+  d.support.rim = SupportSettings::Rim::Fixed;
   d.support.rim_width_m = 0.006;
   const ParticleBody disc = make_target_body(d.target);
   const Particles q = Particles::from_body(disc, 2500.0, 2.0);
@@ -137,6 +139,67 @@ TEST_F(MacroApp, AValidSdelHandoffIsAcceptedByTheElasticLaw) {
   EXPECT_GT(r.at("steps").get<int>(), 0);
   EXPECT_TRUE(std::filesystem::exists(dir_ / "fields.xdmf"));
   EXPECT_TRUE(r.at("residual_velocity_m_s").is_null());  // still in flight: no residual velocity
+  EXPECT_EQ(r.at("outcome"), "undecided");
+}
+
+// The frame: two walls over the rim band that touch its outermost particle surfaces at rest (no force
+// before the waves arrive), push only along the axis (the band slides freely in its plane: the support's
+// impulse has no in-plane part) and hold the block back like a fixed rim; the balances close.
+TEST_F(MacroApp, TheFrameHoldsTheRimBandAlongTheAxisOnly) {
+  const std::string config = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  const CaseSettings s = read_case(Config::load(config, {"support.rim=frame"}));
+  const Particles p = Particles::from_body(make_target_body(s.target), 2500.0, 2.0);
+  const std::vector<std::int32_t> band = rim_particles(p, s);
+  const std::vector<Wall> walls = frame_walls(p, band);
+  ASSERT_EQ(walls.size(), 2u);
+  EXPECT_NEAR(walls[0].point[2], 0.0, 1e-15);    // the block's entry face (layers of 4 mm from z = 0)
+  EXPECT_NEAR(walls[1].point[2], 0.016, 1e-15);  // and its exit face
+  EXPECT_EQ(walls[0].normal[2], 1.0);
+  EXPECT_EQ(walls[1].normal[2], -1.0);
+  EXPECT_EQ(walls[0].particles, band);
+
+  MacroRunArgs args;
+  args.config_path = config;
+  args.overrides = {"support.rim=frame", "run.end_time_s=2e-5"};
+  args.out = dir_;
+  args.quiet = true;
+  run_macro(args);
+  const nlohmann::json r = nlohmann::json::parse(test::read_file(dir_ / "result.json"));
+  const nlohmann::json impulse = r.at("momentum").at("external_impulse_N_s");
+  std::printf("frame, 20 us: support impulse (%.3e, %.3e, %.4e) N s, worst momentum balance error %.3e, worst energy "
+              "balance error %.3e\n",
+              impulse[0].get<double>(), impulse[1].get<double>(), impulse[2].get<double>(),
+              r.at("momentum").at("worst_balance_error").get<double>(), r.at("energy").at("worst_balance_error").get<double>());
+  EXPECT_GT(std::fabs(impulse[2].get<double>()), 1e-4);  // the lips and the plate hold the band
+  EXPECT_EQ(impulse[0].get<double>(), 0.0);
+  EXPECT_EQ(impulse[1].get<double>(), 0.0);
+  EXPECT_LT(r.at("momentum").at("worst_balance_error").get<double>(), 1e-8);
+  EXPECT_LT(r.at("energy").at("worst_balance_error").get<double>(), 5e-3);
+}
+
+// A sphere that stops in the target (a soft J2 block) is decided as embedded and the run ends there
+// (stop_after_outcome_s later), not at the end time. "Stopped" is relative to the target's centre of
+// mass, which the free block sets moving.
+TEST_F(MacroApp, ASphereThatStopsInTheTargetIsEmbedded) {
+  MacroRunArgs args;
+  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  args.overrides = {"material.model=j2", "material.yield_stress_Pa=1.5e7", "material.hardening_modulus_Pa=0",
+                    "run.end_time_s=4e-4", "run.stop_after_outcome_s=2e-6"};
+  args.out = dir_;
+  args.quiet = true;
+  run_macro(args);
+  const nlohmann::json r = nlohmann::json::parse(test::read_file(dir_ / "result.json"));
+  std::printf("soft J2 block at 100 m/s: outcome %s at %.2f us, sphere at z = %.2f mm, v_z = %.3f m/s\n",
+              r.at("outcome").get<std::string>().c_str(), r.at("outcome_time_s").get<double>() * 1e6,
+              r.at("final_sphere_position_m")[2].get<double>() * 1e3, r.at("residual_velocity_m_s").get<double>());
+  EXPECT_EQ(r.at("outcome"), "embedded");
+  EXPECT_FALSE(r.at("perforated").get<bool>());
+  EXPECT_TRUE(r.at("exit_time_s").is_null());
+  EXPECT_GT(r.at("final_sphere_position_m")[2].get<double>(), 0.0);  // its centre is in the block
+  // Stopped relative to the free block, which has taken the momentum: no faster than its centre of mass.
+  const double M = 9.071e-3, block = 0.048 * 0.048 * 0.016 * 2555.7, vz = r.at("residual_velocity_m_s").get<double>();
+  EXPECT_LE(vz, (M * 100.0 - M * vz) / block + 0.05);
+  EXPECT_LT(r.at("end_time_s").get<double>(), r.at("outcome_time_s").get<double>() + 2.5e-6);
 }
 
 TEST(MacroCaseConfig, StrainConfigurationNames) {
