@@ -23,7 +23,7 @@ uhpc_bad_input_case(NAME macro_bad_sdel_handoff
   STDERR "error: tests/regression/sdel_paper/bad_format.json: key 'format': expected \"uhpc-sdel/1\", got \"uhpc-sdel/0\""
   COMMAND ${_macro} ${_macro_case} --sdel tests/regression/sdel_paper/bad_format.json)
 uhpc_bad_input_case(NAME macro_unknown_rim_support
-  STDERR "error: data/macro_elastic_block.json: key 'support.rim': value 'clamped' is not one of: free, fixed"
+  STDERR "error: data/macro_elastic_block.json: key 'support.rim': value 'clamped' is not one of: free, fixed, frame"
   COMMAND ${_macro} ${_macro_case} --set support.rim=clamped)
 uhpc_bad_input_case(NAME macro_unknown_strain_configuration
   STDERR "error: data/macro_elastic_block.json: key 'solver.strain_configuration': value 'mid' is not one of: midpoint, end, endpoint_average"
