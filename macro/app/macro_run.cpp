@@ -1,5 +1,7 @@
 #include "macro_run.hpp"
 
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -25,6 +27,13 @@ namespace uhpc::macro {
 
 namespace {
 
+// The process's peak resident set so far (getrusage: kB on Linux).
+double peak_memory_MB() {
+  struct rusage usage {};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
 nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact, const BalanceTracker& balance,
                            const std::string& model, double wall_s, const Provenance& provenance,
                            std::size_t field_steps) {
@@ -48,6 +57,7 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
       {"step_repeats", s.step_repeats()},
       {"field_outputs", field_steps},
       {"wall_time_s", wall_s},
+      {"peak_memory_MB", peak_memory_MB()},
       {"particle_steps_per_s", wall_s > 0 ? static_cast<double>(s.particles().n) * static_cast<double>(s.steps()) / wall_s : 0.0},
       // Lazy RK rows (solver.shape_reuse_tolerance): the fraction of rows kept over the run (0 without).
       {"shape_rows_kept_fraction",
