@@ -13,8 +13,10 @@
 //   viscous      work of the artificial bulk viscosity (dissipated)
 //   external     work of the external forces (walls, reactions of prescribed velocities)
 //   contact      energy taken by the sphere contact: minus the work of the contact forces on the
-//                particles and the sphere (trapezoid over each step); the penalty is conservative, so
-//                this is the energy held in the penalty springs up to the integrator's error
+//                particles and the sphere, booked kick by kick (the kinetic energy each half kick of
+//                the contact forces gives, exactly); the penalty is conservative, so for it this is the
+//                energy held in its springs up to the integrator's error; the kinematic contact stores
+//                nothing, so for it this is what its impacts dissipate
 //   contact_stored  sum 1/2 k delta^2 at the end of the step (the exact potential, for comparison)
 // kinetic and momentum include the rigid sphere (kinetic_sphere, momentum_sphere are its parts).
 // Balance: kinetic + internal + viscous + contact - external = initial kinetic (+ initial internal,

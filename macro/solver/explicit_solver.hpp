@@ -141,6 +141,7 @@ class ExplicitSolver {
   void compute_forces(double dt, double dt_next, bool internal = true);
   void update_momentum_and_kinetic();
   void update_material_books();  // the material and stabilization parts of the ledger
+  void book_contact_work(double h);  // the contact's share of the step's kicks (after the second one)
   double stabilization_energy(const Moduli& mod, std::int64_t i) const;  // held by particle i's gradients
   StepFailure attempt(double h);  // one velocity Verlet step of size h and the checks
   void save_state();
