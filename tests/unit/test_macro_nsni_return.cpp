@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "materials/afc.hpp"
 #include "materials/afc_config.hpp"
@@ -157,15 +158,11 @@ TEST(NsniGradientReturn, IsTheLinearisedReturnOfAfcAtFixedPressureAndRate) {
   expect_return_is_the_derivative_of_the_update(law, pt.state(), de, delta, dt, 0.0, p.shear_modulus_Pa);
 }
 
-// In crushing the gradient's pressure follows the hydrostat's tangent: the mean stress the law's update
-// gives a perturbed volumetric increment, (sigma_m(de + eps delta) - sigma_m(de)) / eps, equals
-// K tr(delta) with K = Moduli::bulk_Pa, while loading on the crushing curve (its slope, about a third of
-// K_e) and while unloading below it (K_u).
-void expect_bulk_is_the_derivative_of_the_pressure(const AfcMaterial& law, const AfcMaterial::State& state,
-                                                   double density_ratio, double dmu) {
-  const Mat3 de = -std::log((1.0 + dmu) / (1.0 + (density_ratio - 1.0))) / 3.0 * Mat3::Identity();
-  const Mat3 delta = -1e-3 * Mat3::Identity();  // a little more compression
-  const double eps = 1e-4 * de.norm();
+// The AFC law's update of `state` (density ratio `density_ratio`) with the strain increment de and with
+// de + eps delta, quasi-statically (dt 1 s).
+std::pair<AfcMaterial::State, AfcMaterial::State> perturbed_updates(const AfcMaterial& law, const AfcMaterial::State& state,
+                                                                    double density_ratio, const Mat3& de,
+                                                                    const Mat3& delta, double eps) {
   MaterialStep a, b;
   a.strain_increment = de;
   b.strain_increment = de + eps * delta;
@@ -176,6 +173,19 @@ void expect_bulk_is_the_derivative_of_the_pressure(const AfcMaterial& law, const
   AfcMaterial::State sa = state, sb = state;
   law.update(sa, a);
   law.update(sb, b);
+  return {sa, sb};
+}
+
+// In crushing the gradient's pressure follows the hydrostat's tangent: the mean stress the law's update
+// gives a perturbed volumetric increment, (sigma_m(de + eps delta) - sigma_m(de)) / eps, equals
+// K tr(delta) with K = Moduli::bulk_Pa, while loading on the crushing curve (its slope, about a third of
+// K_e) and while unloading below it (K_u).
+void expect_bulk_is_the_derivative_of_the_pressure(const AfcMaterial& law, const AfcMaterial::State& state,
+                                                   double density_ratio, double dmu) {
+  const Mat3 de = -std::log((1.0 + dmu) / (1.0 + (density_ratio - 1.0))) / 3.0 * Mat3::Identity();
+  const Mat3 delta = -1e-3 * Mat3::Identity();  // a little more compression
+  const double eps = 1e-4 * de.norm();
+  const auto [sa, sb] = perturbed_updates(law, state, density_ratio, de, delta, eps);
   const double fd = (sb.stress.trace() - sa.stress.trace()) / 3.0 / eps;
   const double K = law.moduli(sa).bulk_Pa;
   EXPECT_NEAR(fd, K * delta.trace(), 1e-4 * K * std::fabs(delta.trace()));
@@ -216,16 +226,7 @@ TEST(NsniGradientReturn, TheSplitOfTheGradientIsTheDerivativeOfTheSplitStress) {
   const Mat3 de = -0.5 * stretch;
   const Mat3 delta = perturbation();
   const double eps = 1e-4 * de.norm();
-  MaterialStep a, b;
-  a.strain_increment = de;
-  b.strain_increment = de + eps * delta;
-  a.dt_s = b.dt_s = 1.0;
-  a.spacing_m = b.spacing_m = 0.003;
-  a.density_ratio = pt.density_ratio() * std::exp(-de.trace());
-  b.density_ratio = pt.density_ratio() * std::exp(-b.strain_increment.trace());
-  AfcMaterial::State sa = at, sb = at;
-  law.update(sa, a);
-  law.update(sb, b);
+  const auto [sa, sb] = perturbed_updates(law, at, pt.density_ratio(), de, delta, eps);
   ASSERT_EQ(sa.d_plus, at.d_plus);
   ASSERT_EQ(sb.d_plus, at.d_plus);
   ASSERT_EQ(law.moduli(sa).deviatoric_return, 1.0);  // elastic: the effective gradient is C : delta
