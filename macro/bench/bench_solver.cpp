@@ -21,7 +21,12 @@
 //    process's peak resident set so far (getrusage ru_maxrss after the timed steps), not the
 //    configuration's own: it includes every benchmark run before it, so for a clean figure run one
 //    configuration alone, e.g. --benchmark_filter='BM_PaperDisc100/threads:2'.
-// `uhpc_bench_macro --benchmark_filter=PaperDisc` runs the disc alone (both), `--benchmark_filter=
+//  BM_PaperDiscModels100: the same disc and shipped solver settings (lazy rows 3e-4) with the law and
+//    the contact as arguments: law 0 elastic stand-in, 1 AFC with the paper's SDEL (eq. 21's split:
+//    the NSNI gradients are kept effective and split for the forces); contact 0 kinematic (the
+//    default), 1 penalty. 100 steps from the sphere touching at 817 m/s, on 1 and 2 threads: what the
+//    inelastic contact and the AFC law with its NSNI cost against the elastic penalty run.
+// `uhpc_bench_macro --benchmark_filter=PaperDisc` runs the disc alone (all), `--benchmark_filter=
 // PaperDisc/` the 8-step product only, `--benchmark_filter=PaperDisc100` the 100-step figure only.
 #include <benchmark/benchmark.h>
 #ifdef _OPENMP
@@ -30,9 +35,11 @@
 
 #include <sys/resource.h>
 
+#include <functional>
 #include <memory>
 
 #include "bodies/generators.hpp"
+#include "materials/afc_config.hpp"
 #include "solver/explicit_solver.hpp"
 
 namespace {
@@ -82,16 +89,11 @@ BENCHMARK(BM_ElasticStep)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-void BM_PaperDisc(benchmark::State& state) {
-#ifdef _OPENMP
-  omp_set_num_threads(static_cast<int>(state.range(0)));
-#endif
-  constexpr double kRho = 2555.7, kK = 2.20704e10, kG = 1.8457e10;  // data/macro_disc_elastic.json
-  SolverOptions options;
-  options.support_factor = 0.1 * static_cast<double>(state.range(1));
-  options.stabilization = state.range(2) == 0 ? Stabilization::None : Stabilization::Nsni;
-  options.strain_configuration = strain_configuration(state.range(3));
-  options.shape_reuse_tolerance = 1e-4 * static_cast<double>(state.range(4));
+// The paper disc (data/macro_disc_elastic.json's geometry) of the material `make_material(n)` gives
+// for its n particles, the sphere touching the particles' contact radius at 817 m/s; 2 steps to
+// settle the buffers, then the timed steps.
+void run_paper_disc(benchmark::State& state, const SolverOptions& options,
+                    const std::function<MaterialSet(std::size_t)>& make_material, SphereContactModel contact) {
   DiscSpec spec;
   spec.radius_m = 0.2032;
   spec.thickness_m = 0.03175;
@@ -99,14 +101,16 @@ void BM_PaperDisc(benchmark::State& state) {
   spec.h_rim_m = 0.0045;
   spec.core_radius_m = 0.05;
   const ParticleBody body = disc_body(spec);
-  auto solver = std::make_unique<ExplicitSolver>(
-      Particles::from_body(body, kRho, options.support_factor),
-      make_material_set(ElasticMaterial(ElasticParams{kRho, kK, kG}), body.size()), options);
+  MaterialSet material = make_material(body.size());
+  const double rho = reference_density(material);
+  auto solver = std::make_unique<ExplicitSolver>(Particles::from_body(body, rho, options.support_factor),
+                                                 std::move(material), options);
   RigidSphere sphere;
   sphere.mass_kg = 9.071e-3;
   sphere.radius_m = 0.00635;
   sphere.x = {0.0, 0.0, -0.00635 - 0.0005};  // touching the particles' contact radius (h/2 = 1.5 mm)
   sphere.v = {0.0, 0.0, 817.0};
+  sphere.contact.model = contact;
   solver->set_sphere(sphere);
   solver->initialize();
   for (int s = 0; s < 2; ++s) solver->step();  // buffers settle
@@ -130,6 +134,37 @@ void BM_PaperDisc(benchmark::State& state) {
   state.counters["in_contact"] = static_cast<double>(solver->contact().particles_in_contact);
 }
 
+constexpr double kRho = 2555.7, kK = 2.20704e10, kG = 1.8457e10;  // data/macro_disc_elastic.json
+MaterialSet elastic_disc(std::size_t n) { return make_material_set(ElasticMaterial(ElasticParams{kRho, kK, kG}), n); }
+
+void BM_PaperDisc(benchmark::State& state) {
+#ifdef _OPENMP
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+#endif
+  SolverOptions options;
+  options.support_factor = 0.1 * static_cast<double>(state.range(1));
+  options.stabilization = state.range(2) == 0 ? Stabilization::None : Stabilization::Nsni;
+  options.strain_configuration = strain_configuration(state.range(3));
+  options.shape_reuse_tolerance = 1e-4 * static_cast<double>(state.range(4));
+  run_paper_disc(state, options, elastic_disc, SphereContactModel::Kinematic);
+}
+
+void BM_PaperDiscModels(benchmark::State& state) {
+#ifdef _OPENMP
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+#endif
+  SolverOptions options;  // the shipped case's solver settings
+  options.support_factor = 2.5;
+  options.strain_configuration = StrainConfiguration::EndpointAverage;
+  options.shape_reuse_tolerance = 3e-4;
+  options.viscosity.damp_stress_free_points = false;
+  const auto afc = [](std::size_t n) {
+    return make_material_set(AfcMaterial(load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json")), n);
+  };
+  run_paper_disc(state, options, state.range(1) == 0 ? std::function<MaterialSet(std::size_t)>(elastic_disc) : afc,
+                 state.range(2) == 0 ? SphereContactModel::Kinematic : SphereContactModel::Penalty);
+}
+
 BENCHMARK(BM_PaperDisc)
     ->ArgNames({"threads", "support_x10", "nsni", "strain", "reuse_e4"})
     ->ArgsProduct({{1, 2}, {20, 25}, {0, 1}, {0}, {0}})
@@ -150,6 +185,14 @@ BENCHMARK(BM_PaperDisc)
     ->Args({2, 25, 1, 2, 0})
     ->Args({1, 25, 1, 2, 3})
     ->Args({2, 25, 1, 2, 3})
+    ->Iterations(100)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+BENCHMARK(BM_PaperDiscModels)
+    ->Name("BM_PaperDiscModels100")
+    ->ArgNames({"threads", "law", "contact"})
+    ->ArgsProduct({{1, 2}, {0, 1}, {0, 1}})
     ->Iterations(100)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
