@@ -20,11 +20,17 @@ import sys
 NAME = re.compile(r"^v(?P<v>[0-9.]+)_h(?P<h>[0-9.]+)_s(?P<s>[0-9.]+)$")
 
 
-def load(runs_dir):
+def load(runs_dir, failed):
     runs = []
     for d in sorted(pathlib.Path(runs_dir).iterdir()):
         m = NAME.match(d.name)
-        if not m or not (d / "result.json").is_file():
+        if not m:
+            continue
+        if not (d / "result.json").is_file():
+            if (d / "diagnostic.json").is_file():  # a run that failed: reported, not fitted
+                g = json.loads((d / "diagnostic.json").read_text())
+                failed.append({"run": d.name, "reason": g.get("reason"),
+                               "time_s": g.get("last_good_state", {}).get("time_s")})
             continue
         r = json.loads((d / "result.json").read_text())
         runs.append({
@@ -62,7 +68,8 @@ def main():
     ap.add_argument("runs_dir")
     ap.add_argument("--out", required=True)
     a = ap.parse_args()
-    runs = load(a.runs_dir)
+    failed = []
+    runs = load(a.runs_dir, failed)
     if not runs:
         sys.exit(f"refinement_study.py: no runs in {a.runs_dir}")
     out = pathlib.Path(a.out)
@@ -88,7 +95,7 @@ def main():
             entry["finest_minus_extrapolated_m_s"] = (vr[-1] - entry["extrapolated_m_s"]
                                                       if entry["extrapolated_m_s"] is not None else None)
             series.append(entry)
-    (out / "refinement.json").write_text(json.dumps({"runs": runs, "series": series}, indent=2) + "\n")
+    (out / "refinement.json").write_text(json.dumps({"runs": runs, "series": series, "failed": failed}, indent=2) + "\n")
 
     md = ["| run | outcome | vr m/s | particles | steps | wall min | peak MB | energy balance (worst) | contact share |",
           "|---|---|---|---|---|---|---|---|---|"]
@@ -105,6 +112,9 @@ def main():
         vx = f"{e['extrapolated_m_s']:.1f}" if e["extrapolated_m_s"] is not None else "-"
         dx = f"{e['finest_minus_extrapolated_m_s']:.1f}" if e["finest_minus_extrapolated_m_s"] is not None else "-"
         md.append(f"| {e['velocity_m_s']:.0f} | {e['support_factor']:.1f} h | {vr} | {e['spread_m_s']:.1f} | {p} | {vx} | {dx} |")
+    if failed:
+        md += ["", "Failed runs (stopped by a numerical check; the last good state is in the run's fields.h5):", ""]
+        md += [f"- {f['run']}: {f['reason']} after {f['time_s'] * 1e6:.1f} us" for f in failed]
     (out / "refinement.md").write_text("\n".join(md) + "\n")
 
     try:
