@@ -21,7 +21,11 @@ import subprocess
 import sys
 
 
-def run(args, velocity):
+def run(args, velocity, runs):
+    """The outcome at one velocity; a velocity is listed in runs once, however often the bisection asks."""
+    for r in runs:
+        if r["velocity_m_s"] == velocity:
+            return r
     out = pathlib.Path(args.out) / f"v{velocity}"
     result = out / "result.json"
     if not result.is_file():
@@ -36,9 +40,10 @@ def run(args, velocity):
         if done.returncode != 0:
             sys.exit(f"ballistic_limit.py: the run at {velocity} m/s failed (exit {done.returncode}); see {out}")
     r = json.loads(result.read_text())
-    return {"velocity_m_s": velocity, "outcome": r.get("outcome", "perforated" if r["perforated"] else "not perforated"),
+    runs.append({"velocity_m_s": velocity, "outcome": r.get("outcome", "perforated" if r["perforated"] else "not perforated"),
             "perforated": bool(r["perforated"]), "residual_velocity_m_s": r["residual_velocity_m_s"],
-            "final_velocity_m_s": r["final_velocity_m_s"], "end_time_s": r["end_time_s"], "run": str(out)}
+            "final_velocity_m_s": r["final_velocity_m_s"], "end_time_s": r["end_time_s"], "run": str(out)})
+    return runs[-1]
 
 
 def main():
@@ -60,16 +65,14 @@ def main():
     lo, hi = int(round(args.low)), int(round(args.high))
     step = hi - lo
     while True:  # the low end must not perforate
-        r = run(args, lo)
-        runs.append(r)
+        r = run(args, lo, runs)
         if not r["perforated"]:
             break
         hi, lo = lo, max(50, lo - step)
         if hi == 50:
             sys.exit("ballistic_limit.py: every velocity down to 50 m/s perforates")
     while True:  # the high end must perforate
-        r = run(args, hi)
-        runs.append(r)
+        r = run(args, hi, runs)
         if r["perforated"]:
             break
         lo, hi = hi, hi + step
@@ -77,8 +80,7 @@ def main():
         mid = int(round(0.5 * (lo + hi)))
         if mid in (lo, hi):
             break
-        r = run(args, mid)
-        runs.append(r)
+        r = run(args, mid, runs)
         if r["perforated"]:
             hi = mid
         else:
