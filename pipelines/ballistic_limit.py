@@ -41,8 +41,8 @@ def run(args, velocity, runs):
             sys.exit(f"ballistic_limit.py: the run at {velocity} m/s failed (exit {done.returncode}); see {out}")
     r = json.loads(result.read_text())
     runs.append({"velocity_m_s": velocity, "outcome": r.get("outcome", "perforated" if r["perforated"] else "not perforated"),
-            "perforated": bool(r["perforated"]), "residual_velocity_m_s": r["residual_velocity_m_s"],
-            "final_velocity_m_s": r["final_velocity_m_s"], "end_time_s": r["end_time_s"], "run": str(out)})
+                 "perforated": bool(r["perforated"]), "residual_velocity_m_s": r["residual_velocity_m_s"],
+                 "final_velocity_m_s": r["final_velocity_m_s"], "end_time_s": r["end_time_s"], "run": str(out)})
     return runs[-1]
 
 

@@ -114,7 +114,7 @@ TEST(AfcTensileDriver, UniaxialStressTensionFollowsTheMicrocellLawUpToAfcsOwnStr
       ASSERT_NEAR(pt.state().stress(0, 0), (1 - pt.state().d_plus) * el.E * e, el.E * e * e) << e;
   }
   EXPECT_NEAR(peak, sdel_peak, 1e-3 * sdel_peak);
-  EXPECT_LT(peak, 11.5 * MPa);  // the SDEL's 11.12 MPa at 3 mm (README), not eq. 35's 15.9 MPa
+  EXPECT_LT(peak, 11.5 * MPa);  // the SDEL's 11.12 MPa at 3 mm (calibrate/README.md, uhpc-sdel), not eq. 35's 15.9 MPa
   EXPECT_GT(pt.state().d_plus, 0.99);
 }
 
