@@ -86,6 +86,7 @@ SolverOptions read_solver(const Config& c) {
   o.domain_margin = c.number("domain_margin", Range::positive());
   // The skin of the neighbour search stays at its default; the lazy rows need tolerance < skin / 2.
   o.shape_reuse_tolerance = c.number("shape_reuse_tolerance", Range{0.0, 0.5 * o.neighbour_skin, false, true});
+  o.fragment_rcond = c.number("fragment_rcond", Range{0.0, 1.0, false, true});
   return o;
 }
 

@@ -64,6 +64,8 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
        s.shapes().rows_kept + s.shapes().rows_built > 0
            ? static_cast<double>(s.shapes().rows_kept) / static_cast<double>(s.shapes().rows_kept + s.shapes().rows_built)
            : 0.0},
+      // Particles moving as rigid fragments at the end (ShapeCache::fragment, solver.fragment_rcond).
+      {"fragment_particles", s.shapes().fragments()},
       {"energy",
        {{"initial_kinetic_J", s.ledger().kinetic_initial},
         {"final_kinetic_J", s.ledger().kinetic},

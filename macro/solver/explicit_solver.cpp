@@ -44,7 +44,7 @@ StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& for
         Gs = G_start ? G_start + 27 * i : nullptr;
       } else if (L_start && !shapes.row_kept(i)) {
         const std::int64_t b = shapes.row_begin(i);
-        point_velocity_gradients(shapes.row_nodes(i), shapes.row_size(i), shapes.grad.data() + 3 * b,
+        point_velocity_gradients(shapes.fragment(i), shapes.row_nodes(i), shapes.row_size(i), shapes.grad.data() + 3 * b,
                                  G_start ? shapes.hess.data() + 6 * b : nullptr, p.v.data(), i, L_old,
                                  G_start ? G_old : nullptr);
         Ls = L_old;
@@ -54,7 +54,7 @@ StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& for
       const std::int64_t b = shapes.row_begin(i);
       double* L = p.vel_grad.data() + 9 * i;
       double* G = nsni ? p.vel_grad_grad.data() + 27 * i : nullptr;
-      point_velocity_gradients(shapes.row_nodes(i), shapes.row_size(i), shapes.grad.data() + 3 * b,
+      point_velocity_gradients(shapes.fragment(i), shapes.row_nodes(i), shapes.row_size(i), shapes.grad.data() + 3 * b,
                                nsni ? shapes.hess.data() + 6 * b : nullptr, p.v.data(), i, L, G);
       if (Ls) {
         for (int m = 0; m < 9; ++m) L[m] = 0.5 * (Ls[m] + L[m]);
@@ -91,6 +91,9 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
     throw std::invalid_argument("ExplicitSolver: shape_reuse_tolerance must be 0 or in (0, neighbour_skin / 2)");
   shapes_.skin = options_.neighbour_skin;
   shapes_.reuse_tolerance = options_.shape_reuse_tolerance;
+  if (!(options_.fragment_rcond >= 0 && options_.fragment_rcond < 1))
+    throw std::invalid_argument("ExplicitSolver: fragment_rcond must be in [0, 1)");
+  shapes_.fragment_rcond = options_.fragment_rcond;
   shapes_.keep_psi = false;  // the step reads only the gradients
   f_ext_old_.assign(3 * p_.n, 0.0);
   f_contact_old_.assign(3 * p_.n, 0.0);

@@ -71,6 +71,15 @@ struct SolverOptions {
   // support radius since they were built, or a neighbour outside its support has come in by more;
   // otherwise they are kept (a new neighbour search does not force rebuilds). 0: every row is rebuilt at every configuration (the semi-Lagrangian method as such).
   double shape_reuse_tolerance = 0.0;
+  // Fragments by the conditioning of their RK rows (ShapeCache::fragment_rcond; 0: by node count only).
+  // [choice] 0.05, for stability: the step is set from the particle size at the CFL number, which is
+  // stable for the rows of the intact body (the worst of the shipped disc, at an edge: rcond 0.345;
+  // a lattice corner's gradient operator sum_J |grad Psi_J| h is 3.5, an interior row's 2.3). A row of
+  // nodes nearly in a plane has a larger operator: 4.0 at rcond 0.05, 7.4 at 0.015 (1 / cfl = 2.5 times
+  // the corner's, where the step stops being stable for it), 40 at 1.6e-4 (the ejecta row that stopped
+  // the 300 m/s ballistic-limit run). 0.05 keeps a factor of two from that limit and touches no row
+  // of the intact body (tests: MacroCaseSetup.TheShippedDiscHasNoFragmentRows, MacroRobustness.AFlatSheet*).
+  double fragment_rcond = 0.05;
   // Step-collapse guard: repeat a step whose new stable step is below this fraction of the step taken
   // (0 switches the guard off; so does fixed_dt_s). With CFL 0.4 and 0.5 an accepted step was at most
   // 0.8 of the critical step of the configuration it produced.

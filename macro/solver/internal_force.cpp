@@ -45,7 +45,7 @@ void InternalForce::add_row(const ShapeCache& shapes, std::int64_t L, const doub
   for (int d = 0; d < 3; ++d) s[4 * d] -= volume[L] * q;
   const std::int32_t* row = shapes.row_nodes(L);
   const std::int64_t b = shapes.row_begin(L), count = shapes.row_size(L);
-  if (count < kMinContinuumRow) return;  // a fragment carries no internal force (kinematics.hpp)
+  if (shapes.fragment(L)) return;  // a fragment carries no internal force (ShapeCache::fragment)
   if (!stress_grad) {
     row_internal_force(row, count, shapes.grad.data() + 3 * b, nullptr, s, nullptr, buf);
     return;

@@ -13,7 +13,7 @@ void gradients_of_rows(const ShapeCache& shapes, const double* v, std::size_t n,
 #pragma omp parallel for schedule(static, kRowChunk) if (nn >= kParallelMinParticles)
   for (std::int64_t i = 0; i < nn; ++i) {
     const std::int64_t b = shapes.row_begin(i);
-    point_velocity_gradients(shapes.row_nodes(i), shapes.row_size(i), shapes.grad.data() + 3 * b,
+    point_velocity_gradients(shapes.fragment(i), shapes.row_nodes(i), shapes.row_size(i), shapes.grad.data() + 3 * b,
                              hess ? hess + 6 * b : nullptr, v, i, L ? L + 9 * i : nullptr, G ? G + 27 * i : nullptr);
   }
 }

@@ -23,21 +23,14 @@ void velocity_gradient_gradient(const ShapeCache& shapes, const double* v, std::
 // Both in one pass over each row (one read of the indices and of v_J); G may be null (L only).
 void velocity_gradients(const ShapeCache& shapes, const double* v, std::size_t n, double* L, double* G);
 
-// A row of fewer nodes than the linear basis has terms in 3D (4) is a fragment: one to three particles
-// flying apart from the body, whose velocity field RK cannot resolve (the quasi-linear gradient along a
-// pair of nodes is 1/d, and two fragments closing on each other were compressed and thrown apart at
-// 2 km/s within a few steps, the energy check's failure at 610 m/s). A fragment moves as a rigid body:
-// L = 0 and no internal force (InternalForce::add_row); it still meets the sphere and rejoins the
-// continuum once four particles cover it.
-constexpr std::int64_t kMinContinuumRow = 4;
-
 // L_i (9) and, with hess non-null, G_i (27) of point i from its row: the `count` nodes `row`, their
 // gradients grad (3 per node) and second derivatives hess (6 per node). Every sum runs over the row
 // in order, so all the routines above (and ShapeCache::rebuild's) give bitwise the same values. Zero
-// for a fragment (kMinContinuumRow).
-inline void point_velocity_gradients(const std::int32_t* row, std::int64_t count, const double* grad,
-                                     const double* hess, const double* v, std::int64_t i, double* L, double* G) {
-  if (count < kMinContinuumRow) {
+// for a fragment (ShapeCache::fragment: it moves as a rigid body).
+inline void point_velocity_gradients(bool fragment, const std::int32_t* row, std::int64_t count,
+                                     const double* grad, const double* hess, const double* v, std::int64_t i,
+                                     double* L, double* G) {
+  if (fragment) {
     if (L) std::fill(L, L + 9, 0.0);
     if (G) std::fill(G, G + 27, 0.0);
     return;

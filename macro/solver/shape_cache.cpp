@@ -32,7 +32,7 @@ void ShapeCache::rebuild(const rk::Options& options, const double* x, const doub
       if (gradients) {
         const std::int64_t b = row_begin(p);
         const bool with_g = second && gradients->G;
-        point_velocity_gradients(row_nodes(p), row_size(p), grad.data() + 3 * b,
+        point_velocity_gradients(fragment(p), row_nodes(p), row_size(p), grad.data() + 3 * b,
                                  with_g ? hess.data() + 6 * b : nullptr, gradients->v, p, gradients->L + 9 * p,
                                  with_g ? gradients->G + 27 * p : nullptr);
       }
@@ -278,6 +278,12 @@ void ShapeCache::find_with_skin(const double* x, const double* support_radius, s
 std::size_t ShapeCache::count(rk::Path path) const {
   return static_cast<std::size_t>(
       std::count_if(info.begin(), info.end(), [path](const rk::PointResult& r) { return r.path == path; }));
+}
+
+std::size_t ShapeCache::fragments() const {
+  std::size_t k = 0;
+  for (std::size_t p = 0; p < info.size(); ++p) k += fragment(p) ? 1 : 0;
+  return k;
 }
 
 std::size_t ShapeCache::count(SecondGradientPath path) const {

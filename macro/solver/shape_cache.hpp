@@ -17,6 +17,12 @@
 
 namespace uhpc::macro {
 
+// A row of fewer nodes than the linear basis has terms in 3D (4) is a fragment: one to three particles
+// flying apart from the body, whose velocity field RK cannot resolve (the quasi-linear gradient along a
+// pair of nodes is 1/d, and two fragments closing on each other were compressed and thrown apart at
+// 2 km/s within a few steps, the energy check's failure at 610 m/s).
+constexpr std::int64_t kMinContinuumRow = 4;
+
 // What ShapeCache::rebuild computes from each row right after building it, while the row is still in
 // cache (instead of a second pass over the stored table): the velocity gradients of kinematics.hpp,
 // L (9n) and, with second gradients and G non-null, G (27n), of the velocities v (3n).
@@ -63,6 +69,14 @@ struct ShapeCache {
   // a new search of the candidates does not force rebuilds. 0: every row is rebuilt at every prepare
   // (the semi-Lagrangian method as such).
   double reuse_tolerance = 0.0;
+  // Fragments by conditioning (> 0): a row of four or more nodes that lie nearly in a plane or on a
+  // line is a fragment too when the reciprocal condition number of its linear moment matrix (S of
+  // rk_shape.hpp, PointResult::rcond) is below fragment_rcond, or when RK left its full path for it
+  // (rcond below rk::Options::rcond_min). Its gradients across the thin direction grow like
+  // 1 / sqrt(rcond): a flat sheet of four ejecta (rcond 5e-4, gradients some 25 times those of a sound
+  // row) was compressed through its thickness and threw a particle to 1 km/s in one step at a step
+  // that is stable for the body. 0: the node count alone.
+  double fragment_rcond = 0.0;
   std::size_t rows_built = 0, rows_kept = 0;  // rows rebuilt / kept over all prepares (lazy rows only)
   std::size_t layouts = 0;                    // new slot layouts (every row built; lazy rows only)
 
@@ -108,6 +122,17 @@ struct ShapeCache {
   void find_with_skin(const double* x, const double* support_radius, std::size_t n);  // fills `support`
   std::size_t count(SecondGradientPath path) const;
   bool has_second_gradients() const { return !hess.empty(); }
+
+  // A fragment moves as a rigid body: L = 0 and no internal force (kinematics.hpp, InternalForce::
+  // add_row); it still meets the sphere and rejoins the continuum once its row is sound again. Read
+  // after build_row(p) (the criterion is that of the row as built).
+  bool fragment(std::size_t p) const {
+    if (row_size(p) < kMinContinuumRow) return true;
+    if (!(fragment_rcond > 0.0)) return false;
+    return info[p].path != rk::Path::Full || !(info[p].rcond >= fragment_rcond);
+  }
+
+  std::size_t fragments() const;  // rows that are fragments now
 
   // Lazy rows and p kept at this prepare (build_row(p) leaves it as it was).
   bool row_kept(std::size_t p) const { return lazy() && !due_[p]; }

@@ -15,6 +15,7 @@
 #include "case_config.hpp"
 #include "case_setup.hpp"
 #include "macro_run.hpp"
+#include "solver/shape_cache.hpp"
 #include "test_support.hpp"
 #include "uhpc/config.hpp"
 #include "uhpc/errors.hpp"
@@ -123,6 +124,26 @@ TEST(MacroCaseSetup, RimParticlesAreThoseWithinTheRimWidth) {
   for (std::size_t i = 0; i < q.n; ++i) expected += std::hypot(q.x[3 * i], q.x[3 * i + 1]) > 0.044 ? 1 : 0;
   EXPECT_GT(expected, 0u);
   EXPECT_EQ(rim_particles(q, d).size(), expected);
+}
+
+// The fragment criterion by conditioning (solver.fragment_rcond) never touches the intact body: every
+// row of the shipped disc, faces, rim and edges included, is a continuum row, with a linear moment
+// matrix far better conditioned than the threshold (the worst, at an edge, 0.34).
+TEST(MacroCaseSetup, TheShippedDiscHasNoFragmentRows) {
+  const CaseSettings s = read_case(Config::load(std::string(UHPC_DATA_DIR) + "/macro_disc_afc.json", {}));
+  const ParticleBody disc = make_target_body(s.target);
+  const Particles p = Particles::from_body(disc, 2500.0, s.solver.support_factor);
+  ShapeCache shapes;
+  shapes.fragment_rcond = s.solver.fragment_rcond;
+  shapes.rebuild(s.solver.rk, p.x.data(), p.support.data(), p.n, &s.solver.second_gradients);
+  EXPECT_EQ(shapes.fragments(), 0u);
+  double worst = 1.0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    EXPECT_EQ(shapes.info[i].path, rk::Path::Full) << i;
+    worst = std::min(worst, shapes.info[i].rcond);
+  }
+  EXPECT_GT(worst, 5.0 * s.solver.fragment_rcond);
+  std::printf("worst rcond of the shipped disc's rows: %.3f (%zu particles)\n", worst, p.n);
 }
 
 // --sdel is validated and accepted by laws that do not use it (elastic): the run goes on and succeeds.
