@@ -29,6 +29,7 @@
 #include "uhpc/atomic_file.hpp"
 #include "uhpc/cli.hpp"
 #include "uhpc/config.hpp"
+#include "uhpc/data_dir.hpp"
 #include "uhpc/errors.hpp"
 #include "uhpc/logging.hpp"
 #include "uhpc/provenance.hpp"
@@ -38,10 +39,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Shipped defaults of the source tree this program was built from, so every command runs without a
-// hand-written input.
-const std::string kDefaultConfig = std::string(UHPC_DATA_DIR) + "/calibrate.json";
-const std::string kDefaultSyntheticConfig = std::string(UHPC_DATA_DIR) + "/synthetic_ensemble.json";
+// The shipped defaults (uhpc/data_dir.hpp), so every command runs without a hand-written input.
+std::string shipped_or(const std::string& given, const char* name) {
+  return given.empty() ? (uhpc::shipped_data_dir() / name).string() : given;
+}
 
 void print_fit(const uhpc::SdelFitResult& fit, const uhpc::SizeEffectFit& se, const uhpc::Ensemble& e) {
   const double v[4] = {fit.constants.a, fit.constants.A, fit.constants.nu, fit.constants.chi};
@@ -139,24 +140,24 @@ int main(int argc, char** argv) {
                "calibration_figures.h5.",
                "uhpc-calibrate"};
   app.require_subcommand(0, 1);
-  std::string ensemble, out, report, config = kDefaultConfig;
+  std::string ensemble, out, report, config;
   std::vector<std::string> overrides;
   app.add_option("--ensemble", ensemble, "ensemble file (HDF5) written by uhpc-micro ensemble or synthesize");
   app.add_option("--out", out, "the handoff file to write (sdel.json)");
-  app.add_option("--config", config, "settings (JSON)")->capture_default_str();
+  app.add_option("--config", config, "settings (JSON); default: calibrate.json of the shipped data");
   app.add_option("--report", report, "directory for fit_report.json and calibration_figures.h5 "
                                      "(default: the directory of --out)");
   uhpc::add_set_option(app, overrides);
 
   CLI::App* synth = app.add_subcommand("synthesize", "Writes an ensemble file from an SDEL handoff (optionally "
                                                      "with seeded Gaussian noise), in the format uhpc-micro writes");
-  std::string syn_sdel, syn_out, syn_config = kDefaultSyntheticConfig;
+  std::string syn_sdel, syn_out, syn_config;
   std::vector<std::string> syn_overrides;
   double noise = 0;
   long long seed = 0;
   synth->add_option("--sdel", syn_sdel, "SDEL handoff to generate the curves from")->required();
   synth->add_option("--out", syn_out, "ensemble file to write (HDF5)")->required();
-  synth->add_option("--config", syn_config, "settings (JSON)")->capture_default_str();
+  synth->add_option("--config", syn_config, "settings (JSON); default: synthetic_ensemble.json of the shipped data");
   auto* noise_opt = synth->add_option("--noise", noise, "shortcut for --set noise_std=VALUE");
   auto* seed_opt = synth->add_option("--seed", seed, "shortcut for --set seed=VALUE");
   uhpc::add_set_option(*synth, syn_overrides);
@@ -168,6 +169,7 @@ int main(int argc, char** argv) {
     // findings itself, in its notes, so stderr keeps the one-line error contract.
     FLAGS_minloglevel = google::GLOG_FATAL;
     if (synth->parsed()) {
+      syn_config = shipped_or(syn_config, "synthetic_ensemble.json");
       // The shortcuts are overrides like any --set, so the config hash (provenance) includes them.
       if (noise_opt->count() > 0) syn_overrides.push_back(fmt::format("noise_std={}", noise));
       if (seed_opt->count() > 0) syn_overrides.push_back(fmt::format("seed={}", seed));
@@ -175,6 +177,6 @@ int main(int argc, char** argv) {
     }
     if (ensemble.empty()) throw uhpc::InputError("--ensemble is required");
     if (out.empty()) throw uhpc::InputError("--out is required");
-    return calibrate(ensemble, config, overrides, out, report);
+    return calibrate(ensemble, shipped_or(config, "calibrate.json"), overrides, out, report);
   });
 }

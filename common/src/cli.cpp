@@ -1,9 +1,11 @@
 #include "uhpc/cli.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 
+#include "uhpc/build_info.hpp"
 #include "uhpc/errors.hpp"
 
 namespace uhpc {
@@ -34,9 +36,15 @@ int on_success_request(const CLI::App* app, const std::string& program, const CL
   return report("internal error: ", program + ": " + e.get_name() + " needs run_main(app, body) to print the help", kExitNumerical);
 }
 
+// Thrown by the final callback under UHPC_PARSE_ONLY: the command line parsed, nothing runs.
+struct ParsedOnly {};
+
 int run(const CLI::App* app, const std::string& program, const std::function<int()>& body) {
   try {
     return body();
+  } catch (const ParsedOnly&) {
+    std::cout << program << ": command line parsed (UHPC_PARSE_ONLY)" << std::endl;
+    return kExitOk;
   } catch (const InputError& e) {
     return report("error: ", e.what(), kExitBadInput);
   } catch (const NumericalError& e) {
@@ -53,7 +61,18 @@ int run(const CLI::App* app, const std::string& program, const std::function<int
 
 }  // namespace
 
-int run_main(CLI::App& app, const std::function<int()>& body) { return run(&app, app.get_name(), body); }
+int run_main(CLI::App& app, const std::function<int()>& body) {
+  // Every program answers --version the same way: its name, the project version and the git commit
+  // it was built from (the provenance block of its results carries the same two).
+  if (app.get_version_ptr() == nullptr)
+    app.set_version_flag("--version", app.get_name() + " " + build_version() + " (git " + build_git_commit() + ")",
+                         "Print the program's version and git commit and exit");
+  // The README check (tests/regression/check_readme_commands.py): parse, validate the options and
+  // the subcommand, then stop before any work.
+  if (const char* only = std::getenv("UHPC_PARSE_ONLY"); only != nullptr && *only != '\0' && *only != '0')
+    app.final_callback([] { throw ParsedOnly{}; });
+  return run(&app, app.get_name(), body);
+}
 
 int run_main(const std::string& program, const std::function<int()>& body) { return run(nullptr, program, body); }
 

@@ -24,6 +24,7 @@
 #include "uhpc/cli.hpp"
 #include "uhpc/config.hpp"
 #include "uhpc/csv.hpp"
+#include "uhpc/data_dir.hpp"
 #include "uhpc/errors.hpp"
 #include "uhpc/hash.hpp"
 #include "uhpc/provenance.hpp"
@@ -32,7 +33,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kDataDir = UHPC_DATA_DIR;
+// A default input from the shipped data (uhpc/data_dir.hpp) when the option was not given.
+std::string shipped_or(const std::string& given, const char* name) {
+  return given.empty() ? (uhpc::shipped_data_dir() / name).string() : given;
+}
 
 // DIR or DIR/result.json -> (result file, label = the run directory's name).
 std::pair<std::string, std::string> result_file_of(const std::string& arg) {
@@ -62,24 +66,26 @@ int main(int argc, char** argv) {
       "the spread of one shot over several runs (--spread).",
       "uhpc-compare-shots"};
   std::vector<std::string> results;
-  std::string out, experiments_path = kDataDir + "/table5_ballistic_experiments.csv",
-                   paper_path = kDataDir + "/table8_paper_simulations.csv",
-                   projectile_path = kDataDir + "/projectile.json", reference;
+  std::string out, experiments_path, paper_path, projectile_path, reference;
   double tolerance = 1.0;
   bool spread = false, no_paper = false;
   app.add_option("--results", results, "uhpc-macro output directories (or their result.json)")->required();
   app.add_option("--out", out, "output directory")->required();
-  app.add_option("--experiments", experiments_path, "the experiments (Table 5 CSV)");
+  app.add_option("--experiments", experiments_path, "the experiments (Table 5 CSV; default: the shipped data's)");
   app.add_option("--paper", paper_path,
-                 "the paper's simulations (Table 8 CSV, rows pair with the experiments by order)");
+                 "the paper's simulations (Table 8 CSV, rows pair with the experiments by order; default: the "
+                 "shipped data's)");
   app.add_flag("--no-paper", no_paper, "leave out the paper's simulations");
-  app.add_option("--projectile", projectile_path, "projectile (mass_kg, diameter_m, density_kg_m3)");
+  app.add_option("--projectile", projectile_path, "projectile (mass_kg, diameter_m, density_kg_m3; default: the shipped data's)");
   app.add_option("--tolerance-m-s", tolerance, "pairing tolerance on the impact velocity [m/s]")
       ->check(CLI::PositiveNumber);
   app.add_flag("--spread", spread, "spread of one shot over the runs instead of the comparison with experiments");
   app.add_option("--reference", reference, "--spread: the reference run's directory name (default: the first)");
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);
+    experiments_path = shipped_or(experiments_path, "table5_ballistic_experiments.csv");
+    paper_path = shipped_or(paper_path, "table8_paper_simulations.csv");
+    projectile_path = shipped_or(projectile_path, "projectile.json");
     std::vector<uhpc::macro::ShotResult> shots;
     std::string hashed;
     for (const auto& r : results) {

@@ -2,12 +2,14 @@
 // with exactly one line on stderr, and the --set option.
 #include "uhpc/cli.hpp"
 
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "uhpc/build_info.hpp"
 #include "uhpc/config.hpp"
 #include "uhpc/errors.hpp"
 
@@ -154,6 +156,42 @@ TEST(Cli, HelpPrintsUsageAndExitsZero) {
   EXPECT_EQ(outcome.err, "");
   EXPECT_NE(outcome.out.find("--set KEY.PATH=VALUE"), std::string::npos) << outcome.out;
   EXPECT_NE(outcome.out.find("Override one configuration entry"), std::string::npos) << outcome.out;
+}
+
+TEST(Cli, VersionPrintsTheProgramVersionAndCommitAndExitsZero) {
+  Program program;
+  const Outcome outcome = program.run({"--version"});
+  EXPECT_EQ(outcome.code, 0);
+  EXPECT_EQ(outcome.err, "");
+  EXPECT_EQ(outcome.out, std::string("uhpc-test ") + build_version() + " (git " + build_git_commit() + ")\n");
+  EXPECT_FALSE(std::string(build_git_commit()).empty());
+}
+
+// UHPC_PARSE_ONLY: the README check's dry run. A valid command line stops after parsing (the body's
+// work does not happen); a bad one is still exit 2.
+TEST(Cli, ParseOnlyStopsAfterAValidCommandLine) {
+  ::setenv("UHPC_PARSE_ONLY", "1", 1);
+  for (const bool valid : {true, false}) {
+    CLI::App app{"test program", "uhpc-test"};
+    std::string config;
+    app.add_option("--config", config, "case")->required();
+    std::vector<std::string> args{"uhpc-test"};
+    if (valid) args.insert(args.end(), {"--config", "case.json"});
+    std::vector<char*> argv;
+    for (std::string& arg : args) argv.push_back(arg.data());
+    bool worked = false;
+    const Outcome outcome = run_captured(app, [&] {
+      app.parse(static_cast<int>(argv.size()), argv.data());
+      worked = true;
+      return 5;
+    });
+    EXPECT_FALSE(worked);
+    EXPECT_EQ(outcome.code, valid ? 0 : 2) << outcome.err;
+    if (valid) {
+      EXPECT_EQ(outcome.out, "uhpc-test: command line parsed (UHPC_PARSE_ONLY)\n");
+    }
+  }
+  ::unsetenv("UHPC_PARSE_ONLY");
 }
 
 TEST(Cli, HelpOfASubcommand) {

@@ -30,7 +30,10 @@ enum ExitCode : int { kExitOk = 0, kExitNumerical = 1, kExitBadInput = 2 };
 //   CLI11 parse error       -> 2  "error: <CLI11's message>"
 //   --help, --help-all, --version -> 0, CLI11 prints the help (or version) on stdout
 //   other std::exception    -> 1  "internal error: <what>"   (a bug, not the user's input)
-// Otherwise returns what `body` returns. Messages spanning lines are joined into one.
+// Otherwise returns what `body` returns. Messages spanning lines are joined into one. Adds --version
+// ("<program> <version> (git <commit>)") to an App that has none. With UHPC_PARSE_ONLY=1 in the
+// environment the program stops, exit 0, once its command line has parsed and validated (options,
+// subcommand, required options): the dry run with which ctest checks the README's commands.
 int run_main(CLI::App& app, const std::function<int()>& body);
 
 // The same for a body that does not parse a command line with CLI11 through an App run_main
