@@ -151,6 +151,12 @@ std::string short_parse_reason(const std::string& what) {
   return bracket == std::string::npos ? what : what.substr(bracket + 2);
 }
 
+// Documents nest a few levels; one nested thousands deep (a hostile or corrupt input) would overflow
+// the stack of every recursive walk (dump for the config hash, copies, flattening), so the parser
+// refuses it as it reads, before anything is built.
+constexpr int kMaxJsonDepth = 64;
+std::string nesting_reason() { return "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels"; }
+
 // nlohmann keeps the last of two equal keys without a word; a key written twice is almost always
 // an editing mistake (the earlier value silently ignored), so it is rejected. Driven by the
 // parser's callback, which reports containers, keys and scalar values as they are read.
@@ -158,7 +164,8 @@ class DuplicateKeyCheck {
  public:
   explicit DuplicateKeyCheck(std::string source) : source_(std::move(source)) {}
 
-  bool operator()(int /*depth*/, Json::parse_event_t event, Json& parsed) {
+  bool operator()(int depth, Json::parse_event_t event, Json& parsed) {
+    if (depth > kMaxJsonDepth) throw_input_error(source_, current_name(), nesting_reason());
     switch (event) {
       case Json::parse_event_t::object_start: begin_value(); frames_.push_back({false, {}, {}, 0}); break;
       case Json::parse_event_t::array_start: begin_value(); frames_.push_back({true, {}, {}, 0}); break;
@@ -225,8 +232,12 @@ std::string trim(const std::string& text) {
 
 // An override value is JSON when it parses as JSON (3.5, true, [1,2], {"a":1}, "\"quoted\""), else
 // the plain text: --set material.model=afc needs no shell-quoted JSON string.
-Json override_value(const std::string& text) {
-  Json value = Json::parse(text, nullptr, /*allow_exceptions=*/false);
+Json override_value(const std::string& text, const std::string& source, const std::string& key) {
+  const auto shallow = [&](int depth, Json::parse_event_t, Json&) {
+    if (depth > kMaxJsonDepth) throw_input_error(source, key, "--set value " + nesting_reason());
+    return true;
+  };
+  Json value = Json::parse(text, shallow, /*allow_exceptions=*/false);
   return value.is_discarded() ? Json(text) : value;
 }
 
@@ -507,7 +518,8 @@ Assignment parse_assignment(const std::string& assignment, const std::string& so
   const std::size_t equals = assignment.find('=');
   if (equals == std::string::npos) malformed_override(assignment, source);
   try {
-    return {split_key(trim(assignment.substr(0, equals))), override_value(trim(assignment.substr(equals + 1)))};
+    const std::string key = trim(assignment.substr(0, equals));
+    return {split_key(key), override_value(trim(assignment.substr(equals + 1)), source, key)};
   } catch (const std::invalid_argument&) {
     malformed_override(assignment, source);
   }

@@ -170,6 +170,9 @@ Ensemble read_ensemble(const std::filesystem::path& path) {
   Ensemble e;
   const std::size_t n = r.length("/sizes");
   const std::size_t m = r.length("/strain");
+  // An ensemble of no size or no strain has no curve to fit (uhpc-calibrate read past an empty list).
+  if (n == 0) r.fail("/sizes", "no sizes: an ensemble needs at least one cell size");
+  if (m == 0) r.fail("/strain", "no strains: an ensemble needs at least one strain");
   e.sizes_m = r.doubles("/sizes", "m", {n}).values;
   e.strain = r.doubles("/strain", "1", {m}).values;
   const auto dm = r.doubles("/damage/mean", "1", {n, m}).values;

@@ -1,5 +1,7 @@
 #include "cell_analysis_settings.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <string>
 
 #include <fmt/format.h>
@@ -14,7 +16,10 @@ namespace {
 void opt(const Config& c, const std::string& key, double& v, const Range& r) {
   if (c.has(key)) v = c.number(key, r);
 }
-void opt(const Config& c, const std::string& key, int& v, const Range& r) {
+void opt(const Config& c, const std::string& key, int& v, Range r) {
+  // The range clipped to int's, so that 4294967296 steps is refused rather than wrapped to 0.
+  r.lo = std::max(r.lo, static_cast<double>(std::numeric_limits<int>::min()));
+  r.hi = std::min(r.hi, static_cast<double>(std::numeric_limits<int>::max()));
   if (c.has(key)) v = static_cast<int>(c.integer(key, r));
 }
 

@@ -66,9 +66,9 @@ struct RawFile {
 
 class CalibrateEnsembleFile : public test::ScratchDirTest {
  protected:
-  std::string bad(const RawFile& raw) {
+  std::string bad(const RawFile& raw, const Ensemble& e = small_ensemble()) {
     const auto path = dir_ / "bad.h5";
-    raw.write(path, small_ensemble());
+    raw.write(path, e);
     return test::error_of<InputError>([&] { (void)read_ensemble(path); });
   }
   std::string name() const { return (dir_ / "bad.h5").string(); }
@@ -125,6 +125,13 @@ TEST_F(CalibrateEnsembleFile, WrongUnits) {
   raw.units_of = "/nominal_strength";
   raw.units = "MPa";
   EXPECT_EQ(bad(raw), name() + ": dataset '/nominal_strength': expected units \"Pa\", got \"MPa\"");
+}
+
+// A file of no size passed the reader and crashed uhpc-calibrate (the front of an empty list).
+TEST_F(CalibrateEnsembleFile, NoSizesIsRefused) {
+  Ensemble e;
+  e.strain = {0.0, 1e-4};
+  EXPECT_EQ(bad(RawFile{}, e), name() + ": dataset '/sizes': no sizes: an ensemble needs at least one cell size");
 }
 
 TEST_F(CalibrateEnsembleFile, WrongShape) {

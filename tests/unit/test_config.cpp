@@ -420,6 +420,20 @@ TEST_F(ConfigFile, DuplicateKey) {
   EXPECT_NO_THROW(Config::load(fine));
 }
 
+// A document nested 60 000 deep (in a file or a --set value) crashed the recursive walks (the config
+// hash's dump): it is refused as it is read, with the key where it got too deep. 64 levels still load.
+TEST_F(ConfigFile, DeepNestingIsRefusedAsItIsRead) {
+  const auto nested = [](int depth) { return std::string(depth, '[') + "1" + std::string(depth, ']'); };
+  const std::string deep = write("deep.json", "{\"a\": " + nested(60000) + "}");
+  const std::string message = input_error_of([&] { Config::load(deep); });
+  EXPECT_EQ(message.rfind(deep + ": key 'a[0][0]", 0), 0u) << message.substr(0, 200);
+  EXPECT_NE(message.find("': nested deeper than 64 levels"), std::string::npos) << message.substr(0, 200);
+  const std::string ok = write("ok.json", "{\"a\": " + nested(63) + "}");
+  EXPECT_EQ(Config::load(ok).hash().size(), 16u);
+  const std::string set = input_error_of([&] { Config::load(ok, {"b=" + nested(60000)}); });
+  EXPECT_EQ(set, ok + ": key 'b': --set value nested deeper than 64 levels");
+}
+
 // ---------------------------------------------------------------------------------------------
 // hash()
 

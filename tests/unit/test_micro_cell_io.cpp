@@ -82,6 +82,11 @@ TEST(microCellIo, BadInputNamesFileKeyAndReason) {
   EXPECT_EQ(error({"seeds.length_m=1e-4"}),
             kCellConfig + ": key 'seeds.length_m': value 0.0001 must be below half of "
                           "placement.min_ligament_m (0.00015), so that seeds cannot reach another pore, seed or edge");
+  // Beyond the mesh budget (2e6 nodes) before gmsh is asked: a 1 m cell, a 10 nm spacing.
+  EXPECT_EQ(error({"cell_size_m=1.0"}),
+            kCellConfig + ": key 'discretization.nominal_spacing_m': a cell of side 1 m at spacing 5e-05 m needs "
+                          "about 4.6e+08 mesh nodes, more than the 2e+06 a cell may have");
+  EXPECT_NE(error({"discretization.nominal_spacing_m=1e-8"}).find("mesh nodes, more than the 2e+06"), std::string::npos);
   EXPECT_EQ(error({"loading_direction=z"}), kCellConfig + ": key 'loading_direction': value 'z' is not one of: x, y");
   EXPECT_EQ(error({"placement.min_ligament=3"}),
             kCellConfig + ": key 'placement.min_ligament': unknown key (did you mean 'min_ligament_m'?)");

@@ -209,6 +209,9 @@ TEST(microCellAnalysisSettings, DefaultsValuesAndErrors) {
   EXPECT_NE(error(R"({"analysis": {"path": {"contol": "displacement"}}})").find("unknown key"), std::string::npos);
   EXPECT_EQ(error(R"({"analysis": {"path": {"opening_increment": 0.1}}})"),
             "run.json: key 'analysis.path.max_opening_increment': must not be below path.opening_increment");
+  // A count beyond int's range is refused, not wrapped (4294967296 steps became 0 and the run "finished").
+  EXPECT_EQ(error(R"({"analysis": {"path": {"max_steps": 4294967296}}})"),
+            "run.json: key 'analysis.path.max_steps': value 4294967296 is out of range, must be in [1, 2147483647]");
 }
 
 TEST(microCellAnalysisSettings, PathEndFollowsTheStrainGridAndNeverStopsShortOfIt) {
