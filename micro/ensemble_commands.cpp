@@ -21,6 +21,7 @@
 #include "cell_settings.hpp"
 #include "ensemble_curves.hpp"
 #include "run_commands.hpp"
+#include "size_dirs.hpp"
 #include "uhpc/atomic_file.hpp"
 #include "uhpc/cli.hpp"
 #include "uhpc/ensemble_file.hpp"
@@ -44,8 +45,6 @@ struct AnalysisEnsembleSettings {
   PostOptions post;
 };
 
-std::string size_label(double size_m) { return fmt::format("size_{:.1f}mm", size_m * 1e3); }
-
 // [choice] A cell's expected cost, for the progress line's percentage and ETA only: the fourth power of
 // its side. The shipped ensemble's mean cell times at 100 um, 28 / 129 / 241 / 580 s for 3.0 / 4.5 / 5.0 /
 // 6.5 mm, grow as side^3.9; counting cells instead put the ETA of a resumed run, 6.5 mm cells first, 3x
@@ -64,10 +63,8 @@ AnalysisEnsembleSettings read_settings(const Config& cfg) {
     if (!(e.sizes_m[i] > e.sizes_m[i - 1]))
       cfg.fail("cell_sizes_m", fmt::format("must be strictly ascending, but entry {} ({}) follows {}", i,
                                            e.sizes_m[i], e.sizes_m[i - 1]));
-    if (size_label(e.sizes_m[i]) == size_label(e.sizes_m[i - 1]))
-      cfg.fail("cell_sizes_m", fmt::format("entries {} and {} share the directory name {} (sizes must differ by "
-                                           "at least 0.1 mm)", i - 1, i, size_label(e.sizes_m[i])));
   }
+  require_distinct_size_dirs(cfg, "cell_sizes_m", e.sizes_m);
   e.realizations = static_cast<std::size_t>(cfg.integer("realizations", Range::closed(1, 10000)));
   e.base_seed = static_cast<std::uint64_t>(cfg.integer("base_seed", Range::closed(0, 9007199254740991.0)));
   e.retry_failed = cfg.flag("retry_failed");

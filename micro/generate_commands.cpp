@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "size_dirs.hpp"
 #include "cell_io.hpp"
 #include "cell_picture.hpp"
 #include "cell_settings.hpp"
@@ -97,6 +98,7 @@ EnsembleSettings read_ensemble(const Config& cfg) {
   e.cell_config = cfg.text("cell_config");
   if (fs::path(e.cell_config).is_relative()) e.cell_config = (fs::path(cfg.source()).parent_path() / e.cell_config).string();
   e.sizes_m = cfg.numbers("cell_sizes_m", Range::positive());
+  require_distinct_size_dirs(cfg, "cell_sizes_m", e.sizes_m);
   e.realizations = static_cast<int>(cfg.integer("realizations", Range::closed(1, 10000)));
   e.base_seed = static_cast<std::uint64_t>(cfg.integer("base_seed", Range::closed(0, 9007199254740991.0)));
   e.histogram_bins = static_cast<int>(cfg.integer("histogram_bins", Range::closed(2, 10000)));
@@ -108,8 +110,6 @@ EnsembleSettings read_ensemble(const Config& cfg) {
 nlohmann::json spread_json(const Spread& s) {
   return {{"mean", s.mean}, {"min", s.min}, {"max", s.max}, {"stddev", s.stddev}};
 }
-
-std::string size_label(double size_m) { return fmt::format("size_{:.1f}mm", size_m * 1e3); }
 
 }  // namespace
 

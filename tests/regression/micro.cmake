@@ -35,6 +35,12 @@ uhpc_bad_input_case(NAME micro_misspelt_key
 uhpc_bad_input_case(NAME micro_ensemble_bad_cell_override
   STDERR "error: data/micro_cell.json: key 'discretization.nominal_spacing_m': value -1 is out of range, must be > 0"
   COMMAND ${_micro} generate-ensemble --config data/micro_ensemble.json --set cell.discretization.nominal_spacing_m=-1 --out ${_bad})
+uhpc_bad_input_case(NAME micro_ensemble_sizes_share_a_directory
+  STDERR "error: data/micro_ensemble.json: key 'cell_sizes_m': entries 0 and 2 share the directory name size_3.0mm (sizes must differ by at least 0.1 mm)"
+  COMMAND ${_micro} generate-ensemble --config data/micro_ensemble.json --set cell_sizes_m=[0.003,0.0045,0.00301] --out ${_bad})
+uhpc_bad_input_case(NAME micro_cell_beyond_the_mesh_budget
+  STDERR "error: data/micro_cell.json: key 'discretization.nominal_spacing_m': a cell of side 1 m at spacing 5e-05 m needs about 4.6e+08 mesh nodes, more than the 2e+06 a cell may have"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set cell_size_m=1 --out ${_bad})
 
 # --- uhpc-micro elastic: RK Galerkin elastic response of the shipped cell ---
 uhpc_regression_case(NAME micro_elastic OUTPUT elastic.json
