@@ -1,5 +1,7 @@
 #include "uhpc/atomic_file.hpp"
 
+#include "uhpc/errors.hpp"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -21,8 +23,8 @@ void create_parent_directories(const std::filesystem::path& target) {
   std::error_code ec;
   std::filesystem::create_directories(parent, ec);
   if (ec) {
-    throw std::runtime_error(target.string() + ": cannot create directory " + quoted(parent) + ": " +
-                             ec.message());
+    // An output path that cannot be made is the user's to fix (a file in the way, /proc, no permission).
+    throw InputError(target.string() + ": cannot create directory " + quoted(parent) + ": " + ec.message());
   }
 }
 
@@ -87,7 +89,7 @@ void write_text_atomic(const std::filesystem::path& target, std::string_view con
 
   Fd fd(::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
   if (fd.get() < 0) {
-    throw std::runtime_error(target.string() + ": cannot create " + quoted(temporary) + ": " + os_reason(errno));
+    throw InputError(target.string() + ": cannot create " + quoted(temporary) + ": " + os_reason(errno));
   }
   auto fail = [&](const char* what, int error) {
     std::error_code ignored;

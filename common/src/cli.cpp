@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 
 #include "uhpc/build_info.hpp"
@@ -49,6 +50,10 @@ int run(const CLI::App* app, const std::string& program, const std::function<int
     return report("error: ", e.what(), kExitBadInput);
   } catch (const NumericalError& e) {
     return report("numerical failure: ", e.what(), kExitNumerical);
+  } catch (const std::filesystem::filesystem_error& e) {
+    // An output path that cannot be made or written (a file in the way, /proc, no permission).
+    return report("error: ", (e.path1().empty() ? std::string() : e.path1().string() + ": ") + e.code().message(),
+                  kExitBadInput);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return on_success_request(app, program, e);
     return report("error: ", e.what(), kExitBadInput);

@@ -1,6 +1,7 @@
 // write_text_atomic and friends: content arrives complete under the real name, nothing is left
 // under the temporary name, and failures name the path and the OS reason.
 #include "uhpc/atomic_file.hpp"
+#include "uhpc/errors.hpp"
 
 #include <unistd.h>
 
@@ -78,7 +79,7 @@ TEST_F(AtomicFileTest, ErrorNamesPathAndReason) {
   try {
     uhpc::write_text_atomic(target, "{}");
     FAIL() << "expected an exception";
-  } catch (const std::runtime_error& e) {
+  } catch (const uhpc::InputError& e) {  // an unusable output path is bad input (exit 2)
     const std::string message = e.what();
     EXPECT_NE(message.find(target.string()), std::string::npos) << message;
     EXPECT_NE(message.find("Not a directory"), std::string::npos) << message;

@@ -3,6 +3,8 @@
 #include "uhpc/cli.hpp"
 
 #include <cstdlib>
+#include <filesystem>
+#include <system_error>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -58,6 +60,16 @@ struct Program {
     });
   }
 };
+
+// An output path the program cannot make (a file in the way, /proc) is the user's to fix: exit 2.
+TEST(RunMain, AnUnusableOutputPathIsBadInput) {
+  const Outcome outcome = run_captured([]() -> int {
+    throw std::filesystem::filesystem_error("cannot create directories", "/proc/x",
+                                            std::make_error_code(std::errc::no_such_file_or_directory));
+  });
+  EXPECT_EQ(outcome.code, 2);
+  EXPECT_EQ(outcome.err, "error: /proc/x: No such file or directory\n");
+}
 
 TEST(RunMain, ReturnsTheBodysCode) {
   EXPECT_EQ(run_captured([] { return 0; }).code, 0);

@@ -26,6 +26,7 @@ enum ExitCode : int { kExitOk = 0, kExitNumerical = 1, kExitBadInput = 2 };
 
 // Runs `body` and maps failures to exit codes with exactly one line on stderr:
 //   InputError              -> 2  "error: <message>"
+//   std::filesystem::filesystem_error -> 2 "error: <path>: <reason>" (an unusable output path)
 //   NumericalError          -> 1  "numerical failure: <message>"
 //   CLI11 parse error       -> 2  "error: <CLI11's message>"
 //   --help, --help-all, --version -> 0, CLI11 prints the help (or version) on stdout
