@@ -110,7 +110,7 @@ class EnsembleReader {
   // The length of a 1D dataset (used for /sizes and /strain, which define n and m).
   std::size_t length(const std::string& name) const {
     require(name);
-    const H5Dims d = h5_.dims(name);
+    const H5Dims d = wrap([&] { return h5_.dims(name); });
     if (d.size() != 1) fail(name, "expected a 1D dataset, got shape " + dims_text(d));
     return d[0];
   }
@@ -136,11 +136,11 @@ class EnsembleReader {
     }
   }
   void require(const std::string& name) const {
-    if (!h5_.has(name)) fail(name, "required dataset is missing");
+    if (!wrap([&] { return h5_.has(name); })) fail(name, "required dataset is missing");
   }
   void check(const std::string& name, const std::string& units, const H5Dims& expected) const {
     require(name);
-    const H5Dims d = h5_.dims(name);
+    const H5Dims d = wrap([&] { return h5_.dims(name); });
     if (d != expected) fail(name, "expected shape " + dims_text(expected) + ", got " + dims_text(d));
     std::string got;
     try {
@@ -155,7 +155,8 @@ class EnsembleReader {
     try {
       return f();
     } catch (const std::runtime_error& e) {
-      throw InputError(e.what());  // the HDF5 layer's message already names file and dataset
+      // The HDF5 layer's message already names file and dataset; a corrupt file is bad input.
+      throw InputError(e.what());
     }
   }
 
