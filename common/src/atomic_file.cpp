@@ -3,6 +3,7 @@
 #include "uhpc/errors.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -73,6 +74,24 @@ void sync_directory(const std::filesystem::path& dir) {
   if (fd.get() >= 0) (void)::fsync(fd.get());
 }
 
+// Removes the temporaries of `target` left by writers that were killed: ".<name>.tmp.<pid>" whose
+// process no longer exists. A live writer's (another run on the same target) is left alone.
+void remove_stale_temporaries(const std::filesystem::path& target) {
+  const std::string prefix = "." + target.filename().string() + ".tmp.";
+  const std::filesystem::path dir = target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string entry = it->path().filename().string();
+    if (entry.rfind(prefix, 0) != 0) continue;
+    const std::string digits = entry.substr(prefix.size());
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    std::error_code ignored;
+    std::filesystem::remove(it->path(), ignored);
+  }
+}
+
 }  // namespace
 
 std::filesystem::path temporary_path_for(const std::filesystem::path& target) {
@@ -80,6 +99,7 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& target) {
   if (name.empty() || name == "." || name == "..") {
     throw std::invalid_argument(target.string() + ": not a file name");
   }
+  remove_stale_temporaries(target);
   return target.parent_path() / ("." + name.string() + ".tmp." + std::to_string(::getpid()));
 }
 

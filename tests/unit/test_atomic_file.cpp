@@ -86,6 +86,21 @@ TEST_F(AtomicFileTest, ErrorNamesPathAndReason) {
   }
 }
 
+// A killed run leaves its temporary behind: the next writer of the same target removes it, but not
+// the temporary of a writer that is still alive (pid 1 here).
+TEST_F(AtomicFileTest, TemporariesOfKilledWritersAreRemovedByTheNextWriter) {
+  const fs::path target = dir_ / "result.json";
+  const fs::path dead = dir_ / ".result.json.tmp.999999999";  // above any pid_max: no such process
+  const fs::path alive = dir_ / ".result.json.tmp.1";
+  const fs::path other = dir_ / ".other.json.tmp.999999999";
+  for (const fs::path& p : {dead, alive, other}) std::ofstream(p) << "half";
+  uhpc::write_text_atomic(target, "{}");
+  EXPECT_FALSE(fs::exists(dead));
+  EXPECT_TRUE(fs::exists(alive));
+  EXPECT_TRUE(fs::exists(other));  // another target's
+  EXPECT_EQ(read_file(target), "{}");
+}
+
 TEST_F(AtomicFileTest, FailedRenameRemovesTemporary) {
   // The target is an existing non-empty directory, so the final rename fails.
   const fs::path target = dir_ / "taken";

@@ -7,7 +7,8 @@
 
 namespace uhpc {
 
-// The temporary name used for `target` while it is being written: "<dir>/.<name>.tmp.<pid>".
+// The temporary name used for `target` while it is being written: "<dir>/.<name>.tmp.<pid>". Removes
+// the temporaries of `target` that killed writers left (their process is gone) on the way.
 // Throws std::invalid_argument when `target` has no file name.
 std::filesystem::path temporary_path_for(const std::filesystem::path& target);
 
