@@ -64,6 +64,7 @@ RunSettings read_run(const Config& r) {
   s.end_time_s = r.number("end_time_s", Range::positive());
   s.output_interval_steps = r.integer("output_interval_steps", Range::at_least(1));
   s.stop_after_outcome_s = r.number("stop_after_outcome_s", Range::any());
+  s.max_steps = r.integer("max_steps", Range::at_least(1));
   return s;
 }
 

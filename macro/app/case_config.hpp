@@ -49,6 +49,9 @@ struct RunSettings {
   // < 0: run to end_time_s; else stop this long after the outcome is decided (ImpactTracker: the sphere
   // perforated, stopped in the target or rebounded)
   double stop_after_outcome_s = -1.0;
+  // The budget: a run whose first stable step would need more steps than this to reach end_time_s is
+  // refused before it starts (exit 2, with the estimate).
+  std::int64_t max_steps = 0;
 };
 
 struct CaseSettings {

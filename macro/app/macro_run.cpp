@@ -13,6 +13,7 @@
 #include "case_config.hpp"
 #include "case_setup.hpp"
 #include "material_factory.hpp"
+#include "run_inputs.hpp"
 #include "run_outputs.hpp"
 #include "uhpc/atomic_file.hpp"
 #include "uhpc/config.hpp"
@@ -102,6 +103,22 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
   return r;
 }
 
+// A run is refused before it starts when its first stable step would need more than run.max_steps
+// steps to reach the end time (a density of 1e-300 gave a step of exactly 0 and a run that never
+// advanced; a bulk modulus of 1e300 or a speed of 1e9 m/s, runs of days).
+void refuse_beyond_budget(const Config& cfg, const RunSettings& run, double first_step) {
+  const Config r = cfg.section("run");
+  if (!(first_step > 0.0) || !std::isfinite(first_step))
+    r.fail("end_time_s", fmt::format("the first stable step is {:.3e} s: the run cannot advance (check the "
+                                     "material's density and moduli and the particle spacing)", first_step));
+  const double steps = run.end_time_s / first_step;
+  if (steps > static_cast<double>(run.max_steps))
+    r.fail("max_steps", fmt::format("the run would take about {:.3g} steps of {:.3e} s to reach end_time_s = {:.3e} s, "
+                                    "more than max_steps = {} (check the material's density and moduli, the "
+                                    "projectile's speed and the particle spacing, or raise max_steps)",
+                                    steps, first_step, run.end_time_s, run.max_steps));
+}
+
 }  // namespace
 
 void run_macro(const MacroRunArgs& args) {
@@ -117,10 +134,13 @@ void run_macro(const MacroRunArgs& args) {
     spdlog::info("the '{}' law does not use the SDEL: {} was validated and is ignored", material.model, args.sdel_path);
 
   fs::create_directories(args.out);
-  for (const char* stale : {"result.json", "diagnostic.json", "history.csv"}) fs::remove(args.out / stale);
-  const Provenance provenance = Provenance::make("uhpc-macro", cfg.hash());
+  for (const char* stale : {"result.json", "diagnostic.json", "history.csv", "config.json"}) fs::remove(args.out / stale);
+  const RunInputs inputs = run_inputs(cfg, args.config_path, args.overrides, args.sdel_path, material.inputs);
+  write_text_atomic(args.out / "config.json", inputs.record.dump(2) + "\n");
+  const Provenance provenance = Provenance::make("uhpc-macro", inputs.hash);
 
   ExplicitSolver solver = make_solver(settings, body, std::move(material.set));
+  refuse_beyond_budget(cfg, settings.run, solver.dt());
   spdlog::info("{} particles, material '{}', sphere {} kg at {} m/s, first step {:.3e} s, end time {:.3e} s",
                solver.particles().n, material.model, settings.projectile.mass_kg, settings.projectile.velocity_m_s,
                solver.dt(), settings.run.end_time_s);
@@ -185,7 +205,8 @@ void run_macro(const MacroRunArgs& args) {
   const double wall = elapsed();
   fields.write(solver);
   history.save(args.out / "history.csv");
-  const nlohmann::json result = result_json(solver, impact, balance, material.model, wall, provenance, fields.steps_written());
+  nlohmann::json result = result_json(solver, impact, balance, material.model, wall, provenance, fields.steps_written());
+  result["inputs"] = inputs_summary(inputs);
   write_text_atomic(args.out / "result.json", result.dump(2) + "\n");
   spdlog::info("{} steps ({} repeated) in {:.2f} s, {:.3g} particle-steps/s; sphere v_z {:.2f} m/s ({}); energy "
                "balance {:.2e}, momentum balance {:.2e}",

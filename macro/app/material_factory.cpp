@@ -1,6 +1,7 @@
 #include "material_factory.hpp"
 
 #include <filesystem>
+#include <utility>
 
 #include "materials/afc_config.hpp"
 
@@ -35,13 +36,19 @@ std::string relative_to(const Config& block, const std::string& path) {
 
 // {"model": "afc", "constants_file": "afc_uhpc.json", "sdel_file": "sdel_paper.json"}: the constants
 // (Table 6, with an optional "options" block) and the SDEL handoff; --sdel replaces sdel_file.
-AfcParams read_afc(const Config& block, const std::optional<SdelHandoff>& sdel) {
+AfcParams read_afc(const Config& block, const std::optional<SdelHandoff>& sdel, MaterialInputs& record) {
   const std::string constants = relative_to(block, block.text("constants_file"));
   const std::string sdel_file = relative_to(block, block.text("sdel_file"));
   const SdelHandoff handoff = sdel ? *sdel : read_sdel_handoff(sdel_file);
   const Config cfg = Config::load(constants);
   AfcParams p = afc_params_from_config(cfg, handoff);
   cfg.finish();
+  record.files_read.push_back(constants);
+  if (!sdel) {
+    record.files_read.push_back(sdel_file);
+    record.handoff_path = sdel_file;
+  }
+  record.handoff = handoff;
   return p;
 }
 
@@ -50,13 +57,15 @@ AfcParams read_afc(const Config& block, const std::optional<SdelHandoff>& sdel) 
 MaterialChoice make_material(const Config& block, std::size_t n, const std::optional<SdelHandoff>& sdel) {
   const std::string model = block.choice("model", {"elastic", "j2", "afc"});
   if (model == "elastic") {
-    return {make_material_set(ElasticMaterial(read_elastic(block)), n), model, false};
+    return {make_material_set(ElasticMaterial(read_elastic(block)), n), model, false, {}};
   }
   if (model == "afc") {
-    return {make_material_set(AfcMaterial(read_afc(block, sdel)), n), model, true};
+    MaterialInputs inputs;
+    const AfcParams params = read_afc(block, sdel, inputs);
+    return {make_material_set(AfcMaterial(params), n), model, true, std::move(inputs)};
   }
   // model == "j2" (the choice above admits nothing else). Neither elastic nor J2 uses the SDEL.
-  return {make_material_set(J2Material(read_j2(block)), n), model, false};
+  return {make_material_set(J2Material(read_j2(block)), n), model, false, {}};
 }
 
 std::vector<std::string> law_output_fields(const MaterialSet& set) {

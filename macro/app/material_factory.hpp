@@ -18,10 +18,19 @@
 
 namespace uhpc::macro {
 
+// For the run's record: the files a law read (its constants file, the block's sdel_file when --sdel
+// did not replace it), and the handoff it used (--sdel's or sdel_file's; handoff_path empty for --sdel).
+struct MaterialInputs {
+  std::vector<std::string> files_read;
+  std::optional<SdelHandoff> handoff;
+  std::string handoff_path;
+};
+
 struct MaterialChoice {
   MaterialSet set;
   std::string model;   // the block's "model"
   bool uses_sdel = false;  // the law took the handoff
+  MaterialInputs inputs;
 };
 
 MaterialChoice make_material(const Config& block, std::size_t particles, const std::optional<SdelHandoff>& sdel);

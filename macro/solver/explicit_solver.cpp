@@ -469,8 +469,17 @@ StepFailure ExplicitSolver::attempt(double h) {
 }
 
 bool ExplicitSolver::step() {
-  save_state();
   double h = dt();
+  // A step of 0 (or NaN) would never advance time: a run with it fails here rather than loop forever.
+  if (!(h > 0.0) || !std::isfinite(h)) {
+    failure_ = FailureReport{};
+    failure_.kind = StepFailure::StepCollapse;
+    failure_.time_s = time();
+    failure_.dt_s = h;
+    failure_.step = steps_ + 1;
+    return false;
+  }
+  save_state();
   const bool guard = options_.fixed_dt_s <= 0 && options_.dt_collapse_fraction > 0;
   for (int repeat = 0;; ++repeat) {
     StepFailure kind = attempt(h);

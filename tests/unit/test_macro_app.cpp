@@ -147,6 +147,67 @@ TEST(MacroCaseSetup, TheShippedDiscHasNoFragmentRows) {
 }
 
 // --sdel is validated and accepted by laws that do not use it (elastic): the run goes on and succeeds.
+// Every run records what it read (config.json; result.json's "inputs"): the case after --set, each file
+// with the hash of its bytes, the SDEL constants the law used. The provenance hash covers them, so it
+// differs with and without --sdel (it did not).
+TEST_F(MacroApp, TheRunRecordsEveryFileItReadAndTheSdelItUsed) {
+  const auto run = [&](const std::string& name, const std::string& sdel) {
+    MacroRunArgs args;
+    args.config_path = std::string(UHPC_DATA_DIR) + "/macro_disc_afc.json";
+    args.overrides = {"target.radius_m=0.02", "target.core_radius_m=0.01", "run.end_time_s=1e-7",
+                      "support.rim=free"};
+    args.sdel_path = sdel;
+    args.out = dir_ / name;
+    args.quiet = true;
+    run_macro(args);
+    return std::make_pair(nlohmann::json::parse(test::read_file(dir_ / name / "config.json")),
+                          nlohmann::json::parse(test::read_file(dir_ / name / "result.json")));
+  };
+  const auto [config_a, result_a] = run("paper", "");
+  // Another handoff through --sdel: the paper's with A = 3e-4.
+  std::string other = test::read_file(std::string(UHPC_DATA_DIR) + "/sdel_paper.json");
+  other.replace(other.find("\"A\": 0.0002"), 11, "\"A\": 0.0003");
+  const std::string other_path = (dir_ / "other_sdel.json").string();
+  std::ofstream(other_path) << other;
+  const auto [config_b, result_b] = run("given", other_path);
+  // The shipped case reads its AFC constants and its sdel_file; --sdel replaces the latter.
+  ASSERT_EQ(config_a.at("files").size(), 3u);
+  EXPECT_EQ(config_a.at("files")[1].at("role"), "material");
+  EXPECT_EQ(config_a.at("files")[2].at("role"), "sdel");
+  EXPECT_EQ(config_a.at("files")[2].at("fnv1a64").get<std::string>().size(), 16u);
+  EXPECT_EQ(config_a.at("sdel").at("A"), 2e-4);
+  EXPECT_EQ(config_a.at("sdel").at("strain_measure"), "effective_tensile_strain");
+  EXPECT_EQ(config_a.at("case").at("target").at("radius_m"), 0.02);  // after --set
+  EXPECT_EQ(result_a.at("inputs").at("files"), config_a.at("files"));
+  EXPECT_EQ(result_a.at("inputs").at("projectile").at("mass_kg"), 0.009071);
+  EXPECT_EQ(result_a.at("provenance").at("config_hash"), config_a.at("hash"));
+  ASSERT_EQ(config_b.at("files").size(), 3u);
+  EXPECT_EQ(config_b.at("files")[2].at("path"), other_path);
+  EXPECT_EQ(config_b.at("sdel").at("A"), 3e-4);
+  EXPECT_NE(result_b.at("provenance").at("config_hash"), result_a.at("provenance").at("config_hash"));
+}
+
+// A run its first stable step cannot finish within run.max_steps is refused before it starts (exit 2,
+// the estimate in the message): a density of 1e-300 gave a step of exactly 0 and a run that never
+// advanced while history.csv grew; a bulk modulus of 1e300 or a speed of 1e9 m/s, runs of days.
+TEST_F(MacroApp, ARunBeyondTheStepBudgetIsRefusedBeforeItStarts) {
+  const auto refused = [&](const std::vector<std::string>& overrides) {
+    MacroRunArgs args;
+    args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+    args.overrides = overrides;
+    args.out = dir_;
+    args.quiet = true;
+    return test::error_of<InputError>([&] { run_macro(args); });
+  };
+  const std::string file = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  const std::string stiff = refused({"material.bulk_modulus_Pa=1e300"});
+  EXPECT_EQ(stiff.rfind(file + ": key 'run.max_steps': the run would take about ", 0), 0u) << stiff;
+  EXPECT_NE(stiff.find("more than max_steps = 1000000"), std::string::npos) << stiff;
+  EXPECT_NE(refused({"projectile.velocity_m_s=1e9"}).find("more than max_steps = 1000000"), std::string::npos);
+  EXPECT_EQ(refused({"material.density_kg_m3=1e-300"}).rfind(file + ": key 'run.", 0), 0u);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "history.csv"));
+}
+
 TEST_F(MacroApp, AValidSdelHandoffIsAcceptedByTheElasticLaw) {
   MacroRunArgs args;
   args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";

@@ -1,0 +1,66 @@
+#include "run_inputs.hpp"
+
+#include <fstream>
+#include <iterator>
+#include <optional>
+
+#include "uhpc/errors.hpp"
+#include "uhpc/hash.hpp"
+#include "uhpc/sdel_handoff.hpp"
+
+namespace uhpc::macro {
+
+namespace {
+
+std::string file_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open file to record its hash");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return fnv1a64_hex(bytes);
+}
+
+nlohmann::json file_entry(const std::string& role, const std::string& path) {
+  return {{"role", role}, {"path", path}, {"fnv1a64", file_hash(path)}};
+}
+
+}  // namespace
+
+RunInputs run_inputs(const Config& cfg, const std::string& case_file, const std::vector<std::string>& overrides,
+                     const std::string& sdel_path, const MaterialInputs& material) {
+  nlohmann::json files = nlohmann::json::array();
+  files.push_back(file_entry("case", case_file));
+  for (const std::string& f : material.files_read)
+    files.push_back(file_entry(f == material.handoff_path ? "sdel" : "material", f));
+  if (!sdel_path.empty()) files.push_back(file_entry("sdel", sdel_path));
+  nlohmann::json sdel = nullptr;
+  if (material.handoff) {
+    const SdelHandoff& h = *material.handoff;
+    sdel = {{"path", sdel_path.empty() ? material.handoff_path : sdel_path},
+            {"a", h.constants.a},
+            {"A", h.constants.A},
+            {"nu", h.constants.nu},
+            {"chi", h.constants.chi},
+            {"l_mac_m", h.l_mac_m},
+            {"strain_measure", h.strain_measure}};
+  }
+  RunInputs r;
+  r.record = {{"case_file", case_file}, {"overrides", overrides}, {"case", cfg.json()}, {"files", files},
+              {"sdel", sdel}};
+  std::string all = cfg.hash();
+  for (const auto& f : files) all += f.at("fnv1a64").get<std::string>();
+  r.hash = fnv1a64_hex(all);
+  r.record["hash"] = r.hash;
+  return r;
+}
+
+nlohmann::json inputs_summary(const RunInputs& inputs) {
+  const nlohmann::json& c = inputs.record.at("case");
+  return {{"files", inputs.record.at("files")},
+          {"sdel", inputs.record.at("sdel")},
+          {"target", c.at("target")},
+          {"projectile", c.at("projectile")},
+          {"overrides", inputs.record.at("overrides")},
+          {"hash", inputs.hash}};
+}
+
+}  // namespace uhpc::macro

@@ -1,0 +1,29 @@
+#pragma once
+// What a run read, for its record (config.json, and result.json's "inputs"): the case document after
+// --set, every file the case named and the SDEL handoff, each file with the hash of its bytes. The
+// provenance's config hash covers all of them, so two runs that read different handoffs or constants
+// never share one.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "material_factory.hpp"
+#include "uhpc/config.hpp"
+
+namespace uhpc::macro {
+
+struct RunInputs {
+  nlohmann::json record;  // config.json
+  std::string hash;       // fnv1a64 of the case document and of every file read
+};
+
+// `case_file` and `overrides` as given; `sdel_path` the --sdel argument ("" without).
+RunInputs run_inputs(const Config& cfg, const std::string& case_file, const std::vector<std::string>& overrides,
+                     const std::string& sdel_path, const MaterialInputs& material);
+
+// The part of the record result.json carries: the files and the handoff's constants, the target and
+// the projectile (without the rest of the case document).
+nlohmann::json inputs_summary(const RunInputs& inputs);
+
+}  // namespace uhpc::macro
