@@ -52,6 +52,9 @@ struct RunSettings {
   // The budget: a run whose first stable step would need more steps than this to reach end_time_s is
   // refused before it starts (exit 2, with the estimate).
   std::int64_t max_steps = 0;
+  // The size budget: a target that would hold more particles than this is refused before it is built
+  // (exit 2, with the estimated count and memory). At most 2^31 - 1: particle indices are 32-bit.
+  std::int64_t max_particles = 0;
 };
 
 struct CaseSettings {

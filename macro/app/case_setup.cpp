@@ -6,6 +6,11 @@
 
 namespace uhpc::macro {
 
+double estimated_particle_count(const TargetSettings& t) {
+  if (t.shape == TargetSettings::Shape::Disc) return disc_particle_estimate(t.disc);
+  return box_particle_count(t.box_size_m[0], t.box_size_m[1], t.box_size_m[2], t.box_spacing_m);
+}
+
 ParticleBody make_target_body(const TargetSettings& t) {
   if (t.shape == TargetSettings::Shape::Disc) return disc_body(t.disc);
   ParticleBody body = box_body(t.box_size_m[0], t.box_size_m[1], t.box_size_m[2], t.box_spacing_m);

@@ -7,6 +7,8 @@
 
 namespace uhpc::macro {
 
+// The target's particle count before it is built (exact for a box, estimated for a disc).
+double estimated_particle_count(const TargetSettings& target);
 ParticleBody make_target_body(const TargetSettings& target);
 
 // The rim band held by a fixed or framed rim: particles within rim_width of the lateral boundary (|x|

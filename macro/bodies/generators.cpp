@@ -32,6 +32,22 @@ double disc_spacing_at(const DiscSpec& s, double r) {
   return s.h_axis_m + (s.h_rim_m - s.h_axis_m) * t;
 }
 
+double box_particle_count(double lx, double ly, double lz, double spacing) {
+  const auto cells = [spacing](double l) { return std::max(1.0, std::round(l / spacing)); };
+  return cells(lx) * cells(ly) * cells(lz);
+}
+
+double disc_particle_estimate(const DiscSpec& s) {
+  constexpr int kSamples = 4096;  // midpoint rule; h(r) is piecewise linear, so this is converged
+  const double dr = s.radius_m / kSamples;
+  double n = s.thickness_m / s.h_axis_m;  // the central column
+  for (int i = 0; i < kSamples; ++i) {
+    const double r = (i + 0.5) * dr, h = disc_spacing_at(s, r);
+    n += 2 * kPi * r * s.thickness_m / (h * h * h) * dr;
+  }
+  return n;
+}
+
 ParticleBody disc_body(const DiscSpec& s) {
   if (!(s.radius_m > 0 && s.thickness_m > 0 && s.h_axis_m > 0 && s.h_rim_m > 0) ||
       !(s.core_radius_m >= 0 && s.core_radius_m < s.radius_m))

@@ -28,4 +28,10 @@ ParticleBody disc_body(const DiscSpec& spec);
 // The nominal in-plane spacing of a DiscSpec at radius r.
 double disc_spacing_at(const DiscSpec& spec, double r);
 
+// Particle counts known before a body is built, so that a run can be refused before it allocates:
+// exact for the box; for the disc the integral of the lattice density 2 pi r T / h(r)^3 over the radius
+// (within a few per cent of disc_body's count, which rounds every ring and layer).
+double box_particle_count(double lx, double ly, double lz, double spacing);
+double disc_particle_estimate(const DiscSpec& spec);
+
 }  // namespace uhpc::macro

@@ -168,6 +168,7 @@ def main():
     for key, base in [
         ("lengths_m", [sdel_prog, "--config", str(data / "sdel_curves.json")]),
         ("projectile.velocity_m_s", [macro, "--config", str(data / "macro_elastic_block.json"), "-q"] + short),
+        ("target.spacing_m", [macro, "--config", str(data / "macro_elastic_block.json"), "-q"] + short),
         ("cell_size_m", [micro, "generate", "--config", str(data / "micro_cell.json")]),
         ("starts", [calibrate, "--ensemble", str(data / "micro_analysis_ensemble_cells" / "ensemble_4x10.h5")]),
     ]:
@@ -176,6 +177,13 @@ def main():
             o = out() if base[0] != calibrate else out() + "/sdel.json"
             cases.append((f"{pathlib.Path(base[0]).name} --set {name}", base + ["--set", assignment, "--out", o],
                           str(tmp), args.timeout))
+    # Targets far beyond the size budget (a 1 nm spacing asked for 4e22 particles) and a stable step of 0.
+    for assignment in ["target.spacing_m=1e-9", "target.spacing_m=1e-300", "run.max_particles=1",
+                       "material.density_kg_m3=1e-300"]:
+        counter[0] += 1
+        cases.append((f"uhpc-macro --set {assignment}", [macro, "--config", str(data / "macro_elastic_block.json"),
+                                                          "-q", "--set", assignment, "--out", out()],
+                      str(tmp), args.timeout))
     # The SDEL handoff (uhpc-sdel --sdel).
     handoff = json.loads((data / "sdel_paper.json").read_text())
     for name, text in mutations(handoff):

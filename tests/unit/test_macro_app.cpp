@@ -208,6 +208,34 @@ TEST_F(MacroApp, ARunBeyondTheStepBudgetIsRefusedBeforeItStarts) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "history.csv"));
 }
 
+// A target beyond run.max_particles is refused before it is built (exit 2, the count and the memory
+// in the message): a 1 nm spacing asked for 1e23 particles and wrapped the lattice's int counts.
+TEST_F(MacroApp, ATargetBeyondTheSizeBudgetIsRefusedBeforeItIsBuilt) {
+  const std::string file = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  const auto refused = [&](const std::vector<std::string>& overrides) {
+    MacroRunArgs args;
+    args.config_path = file;
+    args.overrides = overrides;
+    args.out = dir_;
+    args.quiet = true;
+    return test::error_of<InputError>([&] { run_macro(args); });
+  };
+  const std::string tiny = refused({"target.spacing_m=1e-9"});
+  EXPECT_EQ(tiny.rfind(file + ": key 'run.max_particles': the target would hold about 3.69e+22 particles (about ", 0), 0u)
+      << tiny;
+  EXPECT_NE(tiny.find("more than max_particles = 2000000"), std::string::npos) << tiny;
+  // The block's 12 x 12 x 4 = 576 particles: one below the count is refused, the count itself runs.
+  EXPECT_NE(refused({"run.max_particles=575"}).find("about 576 particles"), std::string::npos);
+  MacroRunArgs exact;
+  exact.config_path = file;
+  exact.overrides = {"run.max_particles=576", "run.end_time_s=2e-6"};
+  exact.out = dir_;
+  exact.quiet = true;
+  EXPECT_NO_THROW(run_macro(exact));
+  EXPECT_EQ(refused({"run.max_particles=3000000000"}),
+            file + ": key 'run.max_particles': value 3000000000 is out of range, must be in [1, 2147483647]");
+}
+
 TEST_F(MacroApp, AValidSdelHandoffIsAcceptedByTheElasticLaw) {
   MacroRunArgs args;
   args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";

@@ -21,17 +21,6 @@ m::DiscSpec paper_disc(double core_radius) {
   return {0.2032, 0.03175, -0.03175, 0.003, 0.0045, core_radius};
 }
 
-// Particles expected from the spacing field: integral of 2 pi r T / h(r)^3 dr.
-double expected_count(const m::DiscSpec& s) {
-  const int n = 20000;
-  double sum = 0.0;
-  for (int i = 0; i < n; ++i) {
-    const double r = (i + 0.5) / n * s.radius_m, h = m::disc_spacing_at(s, r);
-    sum += 2 * kPi * r * (s.radius_m / n) * s.thickness_m / (h * h * h);
-  }
-  return sum;
-}
-
 double smallest_neighbour_distance(const m::ParticleBody& body, double search) {
   const auto list = uhpc::neighbours_within<3>(body.position.data(), body.size(), body.position.data(), body.size(),
                                                search);
@@ -67,7 +56,7 @@ TEST(Bodies, PaperDiscHasExactVolumeAndStaysInside) {
     EXPECT_GT(disc.position[3 * i + 2], -s.thickness_m);
     EXPECT_LT(disc.position[3 * i + 2], 0.0);
   }
-  const double expected = expected_count(s);
+  const double expected = m::disc_particle_estimate(s);
   std::printf("  paper disc, linear grading from the axis: %zu particles (spacing field predicts %.0f)\n",
               disc.size(), expected);
   EXPECT_NEAR(disc.size() / expected, 1.0, 0.05);
@@ -105,6 +94,19 @@ TEST(Bodies, UniformDiscMatchesTheLatticeCount) {
   std::printf("  uniform 3 mm disc: %zu particles (square lattice in plane x 11 layers: %.0f)\n", disc.size(),
               lattice);
   EXPECT_NEAR(disc.size() / lattice, 1.0, 0.01);
+}
+
+// The counts a run's size budget is checked against before the body is built: exact for the box, within
+// a few per cent of disc_body's rounded rings and layers for graded, cored and uniform discs.
+TEST(Bodies, TheCountsKnownBeforeABodyIsBuiltMatchTheBuiltBodies) {
+  EXPECT_EQ(m::box_particle_count(0.048, 0.048, 0.016, 0.004), m::box_body(0.048, 0.048, 0.016, 0.004).size());
+  EXPECT_EQ(m::box_particle_count(0.01, 0.02, 0.001, 0.004), m::box_body(0.01, 0.02, 0.001, 0.004).size());
+  EXPECT_EQ(m::box_particle_count(0.048, 0.048, 0.016, 1e-9), 48e6 * 48e6 * 16e6);
+  for (const m::DiscSpec& s : {paper_disc(0.0), paper_disc(0.05), m::DiscSpec{0.2032, 0.03175, 0, 0.003, 0.003, 0},
+                               m::DiscSpec{0.2032, 0.03175, 0, 0.006, 0.009, 0.05}}) {
+    const double built = static_cast<double>(m::disc_body(s).size());
+    EXPECT_NEAR(m::disc_particle_estimate(s) / built, 1.0, 0.05) << s.h_axis_m << " " << s.core_radius_m;
+  }
 }
 
 TEST(Bodies, RejectsDegenerateSpecs) {
