@@ -67,6 +67,24 @@ void print_fit(const uhpc::SdelFitResult& fit, const uhpc::SizeEffectFit& se, co
   }
 }
 
+// A fit no start could finish writes REPORT_DIR/fit_diagnostic.json (the inputs and every start: where
+// it began, where it ended, the solver's message) and returns the one-line message naming the input.
+std::string write_fit_diagnostic(const uhpc::SdelFitFailure& failure, const std::string& ensemble_path,
+                                 const std::string& config_path, const uhpc::CalibrateSettings& settings,
+                                 const fs::path& report_dir, const uhpc::Config& cfg) {
+  const fs::path path = report_dir / "fit_diagnostic.json";
+  const nlohmann::json diagnostic = {{"failure", failure.what()},
+                                     {"ensemble", ensemble_path},
+                                     {"config", config_path},
+                                     {"settings", uhpc::fit_settings_json(settings)},
+                                     {"starts", uhpc::sdel_starts_json(failure.starts)},
+                                     {"provenance", uhpc::Provenance::make("uhpc-calibrate", cfg.hash()).to_json()}};
+  fs::create_directories(report_dir);
+  uhpc::write_text_atomic(path, diagnostic.dump(2) + "\n");
+  return fmt::format("{}: {} ({} starts; each start's end and the solver's message in {})", ensemble_path,
+                     failure.what(), failure.starts.size(), path.string());
+}
+
 int calibrate(const std::string& ensemble_path, const std::string& config_path,
               const std::vector<std::string>& overrides, const fs::path& out, fs::path report_dir) {
   const uhpc::Config cfg = uhpc::Config::load(config_path, overrides);
@@ -78,11 +96,15 @@ int calibrate(const std::string& ensemble_path, const std::string& config_path,
         "A / sqrt(1 + a lambda) is a single number: the fit needs at least 2 sizes",
         ensemble_path, ensemble.sizes_m.front()));
   }
+  if (report_dir.empty()) report_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  fs::remove(report_dir / "fit_diagnostic.json");  // an earlier failure's, which this run replaces or clears
   uhpc::SdelFitResult fit;
   try {
     fit = uhpc::fit_sdel(uhpc::fit_data_from_ensemble(ensemble, settings.l_mac_m), settings.fit);
   } catch (const std::invalid_argument& e) {
     throw uhpc::InputError(ensemble_path + ": dataset '/damage/mean': " + e.what());
+  } catch (const uhpc::SdelFitFailure& failure) {
+    throw uhpc::NumericalError(write_fit_diagnostic(failure, ensemble_path, config_path, settings, report_dir, cfg));
   }
   const uhpc::SizeEffectFit size_effect =
       uhpc::fit_size_effect(ensemble.sizes_m, ensemble.nominal_strength_Pa, settings.f_t_Pa);
@@ -105,7 +127,6 @@ int calibrate(const std::string& ensemble_path, const std::string& config_path,
   handoff.provenance = provenance;
   uhpc::write_sdel_handoff(out.string(), handoff);
 
-  if (report_dir.empty()) report_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
   nlohmann::json report = {{"ensemble", {{"file", ensemble_path}, {"provenance", source_provenance}}},
                            {"handoff", out.string()},
                            {"settings", uhpc::fit_settings_json(settings)},

@@ -25,6 +25,20 @@ nlohmann::json constants_json(const SdelConstants<double>& c) {
 
 }  // namespace
 
+nlohmann::json sdel_starts_json(const std::vector<SdelStart>& starts) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const SdelStart& s : starts) {
+    out.push_back({{"origin", s.origin},
+                   {"initial", constants_json(s.initial)},
+                   {"final", constants_json(s.final)},
+                   {"cost", s.cost},
+                   {"converged", s.converged},
+                   {"iterations", s.iterations},
+                   {"message", s.message}});
+  }
+  return out;
+}
+
 nlohmann::json sdel_fit_json(const SdelFitResult& fit, const Ensemble& ensemble, bool with_starts) {
   nlohmann::json identifiable;
   for (std::size_t i = 0; i < 4; ++i) identifiable[kSdelConstantNames[i]] = fit.identifiable[i];
@@ -58,19 +72,7 @@ nlohmann::json sdel_fit_json(const SdelFitResult& fit, const Ensemble& ensemble,
       {"best_start", fit.best_start},
       {"starts_run", fit.starts.size()},
       {"starts_agreeing", fit.starts_agreeing}};
-  if (with_starts) {
-    nlohmann::json starts = nlohmann::json::array();
-    for (const SdelStart& s : fit.starts) {
-      starts.push_back({{"origin", s.origin},
-                        {"initial", constants_json(s.initial)},
-                        {"final", constants_json(s.final)},
-                        {"cost", s.cost},
-                        {"converged", s.converged},
-                        {"iterations", s.iterations},
-                        {"message", s.message}});
-    }
-    j["starts"] = starts;
-  }
+  if (with_starts) j["starts"] = sdel_starts_json(fit.starts);
   return j;
 }
 

@@ -17,6 +17,8 @@ namespace uhpc {
 
 // The SDEL fit: constants, standard errors, covariance, identifiability, per-size quality; with
 // `with_starts` also every start (the report has them, the handoff does not need them).
+// Every start of a fit: origin, initial and final constants, cost, convergence, the solver's message.
+nlohmann::json sdel_starts_json(const std::vector<SdelStart>& starts);
 nlohmann::json sdel_fit_json(const SdelFitResult& fit, const Ensemble& ensemble, bool with_starts);
 nlohmann::json size_effect_json(const SizeEffectFit& fit, const Ensemble& ensemble);
 // The fit options as they were applied (echoed into the report and the handoff).

@@ -220,8 +220,8 @@ SdelFitResult fit_sdel(const SdelFitData& data, const SdelFitOptions& o) {
       result.best_start = static_cast<int>(i);
     }
   }
+  if (result.best_start < 0) throw SdelFitFailure(std::move(candidates));
   result.starts = candidates;
-  if (result.best_start < 0) throw NumericalError("SDEL fit: no start reached a finite optimum");
   const SdelStart& best = candidates[static_cast<std::size_t>(result.best_start)];
   result.constants = best.final;
   result.cost = best.cost;

@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "uhpc/errors.hpp"
+
 #include "uhpc/sdel.hpp"
 
 namespace uhpc {
@@ -112,6 +114,15 @@ struct SdelFitResult {
   std::vector<SdelSizeQuality> sizes;
 };
 
+// No start reached a finite optimum: the error carries every start (where it began, where it ended,
+// the solver's message) so the caller can write them into a diagnostic file.
+class SdelFitFailure : public NumericalError {
+ public:
+  explicit SdelFitFailure(std::vector<SdelStart> starts_run)
+      : NumericalError("no start of the SDEL fit reached a finite optimum"), starts(std::move(starts_run)) {}
+  std::vector<SdelStart> starts;
+};
+
 // Which samples enter the fit ([size][strain]).
 std::vector<std::vector<bool>> sdel_fit_mask(const SdelFitData& data, const SdelFitOptions& options);
 
@@ -119,7 +130,7 @@ std::vector<std::vector<bool>> sdel_fit_mask(const SdelFitData& data, const Sdel
 std::vector<SdelStart> sdel_candidate_starts(const SdelFitData& data);
 
 // Fits the SDEL. Throws std::invalid_argument for unusable data (fewer than 2 sizes: a and A cannot
-// both be fitted; fewer than 4 samples; a curve that never reaches d = 0.5 ...) and NumericalError when
+// both be fitted; fewer than 4 samples; a curve that never reaches d = 0.5 ...) and SdelFitFailure when
 // no start gives a finite optimum.
 SdelFitResult fit_sdel(const SdelFitData& data, const SdelFitOptions& options);
 

@@ -87,3 +87,16 @@ uhpc_calibrate_bad_case(calibrate_misspelt_override
 uhpc_calibrate_bad_case(calibrate_missing_ensemble_option
   "error: --ensemble is required"
   ${CAL_EXE} --out ${BAD}/out/sdel.json)
+
+# A fit no start can finish (spread weights of 1 / 1e-300 overflow every residual to infinity) is a
+# numerical failure: exit 1, one line naming the ensemble, and fit_diagnostic.json with every start.
+set(FAIL_DIR ${BAD}/fit_failure)
+add_test(NAME regression.calibrate_fit_failure
+         COMMAND ${CMAKE_COMMAND}
+                 "-DCOMMAND=${CAL_EXE}|--ensemble|${BAD}/valid.h5|--out|${FAIL_DIR}/sdel.json|--set|weighting=spread|--set|damage_resolution=1e-300"
+                 -DEXPECTED_CODE=1
+                 "-DEXPECTED_STDERR=numerical failure: ${BAD}/valid.h5: no start of the SDEL fit reached a finite optimum (8 starts; each start's end and the solver's message in ${FAIL_DIR}/fit_diagnostic.json)"
+                 -DEXPECTED_FILE=${FAIL_DIR}/fit_diagnostic.json "-DEXPECTED_FILE_TEXT=\"origin\": \"data-driven linear solve\""
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/expect_failure.cmake
+         WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
+set_tests_properties(regression.calibrate_fit_failure PROPERTIES LABELS regression FIXTURES_REQUIRED cal_bad_valid)
