@@ -8,6 +8,7 @@
 #include <system_error>
 #include <utility>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "uhpc/atomic_file.hpp"
@@ -256,6 +257,22 @@ T read_number_attribute(hid_t attribute, hid_t memory_type, bool integers_only, 
   return value;
 }
 
+// A dataset's declared shape is checked against what the file can hold before anything is allocated:
+// a file of a few kB that declares 4e9 values (unallocated storage reads as fill values) made a reader
+// allocate 32 GB. The bound is deflate's largest compression ratio (1032:1) on the whole file, plus 1 MiB
+// for tiny files; HDF5 fill values of unwritten datasets are not data and are not allowed beyond it.
+void check_fits_in_file(hid_t file, hssize_t count, std::size_t value_bytes, const std::string& where) {
+  constexpr double kMaxCompression = 1032.0;
+  hsize_t file_bytes = 0;
+  if (H5Fget_filesize(file, &file_bytes) < 0) throw std::runtime_error(where + "cannot read the file's size");
+  const double bytes = static_cast<double>(count) * static_cast<double>(value_bytes);
+  if (count < 0 || bytes > kMaxCompression * static_cast<double>(file_bytes) + 1048576.0) {
+    throw std::runtime_error(where + fmt::format("declares {} values ({:.3g} GB), more than a file of {} bytes can "
+                                                 "hold: the file is corrupt",
+                                                 count, bytes * 1e-9, file_bytes));
+  }
+}
+
 template <typename T>
 H5Array<T> read_array(const std::string& file_name, hid_t file, const std::string& name, hid_t memory_type,
                       bool integers_only) {
@@ -275,6 +292,7 @@ H5Array<T> read_array(const std::string& file_name, hid_t file, const std::strin
   H5Array<T> array;
   array.dims.assign(extents.begin(), extents.end());
   const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  check_fits_in_file(file, count, sizeof(T), where);
   array.values.resize(static_cast<std::size_t>(std::max<hssize_t>(count, 0)));
   if (!array.values.empty() &&
       H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, array.values.data()) < 0) {

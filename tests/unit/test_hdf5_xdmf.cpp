@@ -320,6 +320,35 @@ TEST_F(H5Test, CompressedDatasetsRoundTrip) {
   EXPECT_THROW(H5Writer(dir_ / "bad.h5", uhpc::H5WriteOptions{10}), std::invalid_argument);
 }
 
+// A dataset's declared shape is checked against what the file can hold before the reader allocates:
+// a 4e9-value dataset that was never written (its storage unallocated) in a file of a few kB was read as
+// 32 GB of fill values. Deflated data stays readable: deflate cannot compress more than 1032:1.
+TEST_F(H5Test, ADatasetLargerThanItsFileCanHoldIsRefusedBeforeAnyAllocation) {
+  const fs::path file = dir_ / "huge.h5";
+  {
+    const hid_t f = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    const hsize_t n = 4000000000ULL;
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t d = H5Dcreate2(f, "/x", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dclose(d);
+    H5Sclose(space);
+    H5Fclose(f);
+  }
+  const std::string error = runtime_error_of([&] { H5Reader(file).read_doubles("x"); });
+  EXPECT_THAT(error, HasSubstr(file.string() + ": dataset 'x': declares 4000000000 values (32 GB), more than a file of "));
+  EXPECT_THAT(error, HasSubstr("bytes can hold: the file is corrupt"));
+
+  const fs::path zeros = dir_ / "zeros.h5";
+  const std::vector<double> values(4000000, 0.0);  // 32 MB of zeros, deflated to a few tens of kB
+  {
+    H5Writer w(zeros, uhpc::H5WriteOptions{9});
+    w.write("z", values, {values.size()}, "1");
+    w.close();
+  }
+  EXPECT_LT(fs::file_size(zeros), 32000000u / 100u);
+  EXPECT_EQ(H5Reader(zeros).read_doubles("z").values, values);
+}
+
 TEST_F(H5Test, AppenderExtendsAnExistingFile) {
   const fs::path file = dir_ / "grow.h5";
   {
