@@ -42,6 +42,8 @@ ProjectileSettings read_projectile(const Config& p) {
   s.radius_m = p.number("radius_m", Range::positive());
   s.initial_gap_m = p.number("initial_gap_m", Range::non_negative());
   s.velocity_m_s = p.number("velocity_m_s", Range::positive());
+  s.obliquity_deg = p.number("obliquity_deg", Range::closed(0.0, 80.0));
+  s.offset_m = p.number("offset_m", Range::non_negative());
   const Config c = p.section("contact");
   s.contact.model = c.choice("model", {"kinematic", "penalty"}) == "penalty" ? SphereContactModel::Penalty
                                                                             : SphereContactModel::Kinematic;
@@ -109,7 +111,21 @@ CaseSettings read_case(const Config& cfg) {
     cfg.section("projectile").fail("radius_m", "the sphere must be smaller than the target's half width");
   if (s.support.rim != SupportSettings::Rim::Free && s.support.rim_width_m >= lateral)
     cfg.section("support").fail("rim_width_m", "the rim band would cover the whole target");
+  // The sphere's first touch must lie inside the target and clear of the held rim band.
+  const double clear = lateral - (s.support.rim == SupportSettings::Rim::Free ? 0.0 : s.support.rim_width_m);
+  if (s.projectile.offset_m + s.projectile.radius_m >= clear)
+    cfg.section("projectile").fail("offset_m", fmt::format("the sphere would first touch the target beyond {:.4g} m from "
+                                                           "the axis (offset + radius must be < {:.4g} m: the {})",
+                                                           s.projectile.offset_m + s.projectile.radius_m, clear,
+                                                           s.support.rim == SupportSettings::Rim::Free ? "target's half width"
+                                                                                                      : "inner edge of the rim band"));
   return s;
+}
+
+Vec3 flight_direction(const ProjectileSettings& p) {
+  if (p.obliquity_deg == 0.0) return {0.0, 0.0, 1.0};
+  const double theta = p.obliquity_deg * std::acos(-1.0) / 180.0;
+  return {std::sin(theta), 0.0, std::cos(theta)};
 }
 
 }  // namespace uhpc::macro

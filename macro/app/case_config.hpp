@@ -27,9 +27,17 @@ struct ProjectileSettings {
   double mass_kg = 0.0;
   double radius_m = 0.0;
   double initial_gap_m = 0.0;  // between the sphere and the entry face, along the axis
-  double velocity_m_s = 0.0;   // along +z (towards the target)
+  double velocity_m_s = 0.0;   // speed along the flight direction
+  // The impact geometry: the flight direction leans obliquity_deg from the target's normal (+z) towards
+  // +x, and the sphere first touches the entry face offset_m from the axis along +x (0, 0: a normal
+  // impact on the axis, the paper's shots).
+  double obliquity_deg = 0.0;
+  double offset_m = 0.0;
   SphereContactOptions contact;
 };
+
+// The unit flight direction (sin theta, 0, cos theta): exactly (0, 0, 1) for a normal impact.
+Vec3 flight_direction(const ProjectileSettings& projectile);
 
 // How the target's rim is held (support.rim):
 //   free   nothing holds it;

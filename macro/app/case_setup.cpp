@@ -61,8 +61,12 @@ RigidSphere make_projectile(const ProjectileSettings& s) {
   RigidSphere sphere;
   sphere.mass_kg = s.mass_kg;
   sphere.radius_m = s.radius_m;
-  sphere.x = {0.0, 0.0, -(s.radius_m + s.initial_gap_m)};
-  sphere.v = {0.0, 0.0, s.velocity_m_s};
+  // The centre starts initial_gap_m from the entry face along its normal, on the flight line through the
+  // centre at first touch, (offset, 0, -R). A normal impact on the axis is (0, 0, -(R + gap)) exactly.
+  const Vec3 d = flight_direction(s);
+  const double travel = s.initial_gap_m / d[2];
+  sphere.x = {s.offset_m - travel * d[0], 0.0, -s.radius_m - travel * d[2]};
+  sphere.v = {s.velocity_m_s * d[0], s.velocity_m_s * d[1], s.velocity_m_s * d[2]};
   sphere.contact = s.contact;
   return sphere;
 }

@@ -45,6 +45,8 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
       {"perforated", impact.perforated()},
       {"rebounded", impact.rebounded()},
       {"residual_velocity_m_s", nullptr},
+      {"residual_speed_m_s", nullptr},
+      {"deflection_deg", nullptr},
       {"outcome_time_s", nullptr},
       {"exit_time_s", nullptr},
       {"velocity_reduction", nullptr},
@@ -95,6 +97,8 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
   if (impact.decided()) {
     const double vr = impact.residual_velocity_m_s;
     r["residual_velocity_m_s"] = vr;
+    r["residual_speed_m_s"] = impact.residual_speed_m_s;
+    r["deflection_deg"] = impact.deflection_deg;
     r["outcome_time_s"] = impact.outcome_time_s;
     if (impact.perforated() || impact.rebounded()) r["exit_time_s"] = impact.outcome_time_s;
     r["velocity_reduction"] = (vi - vr) / vi;
@@ -165,6 +169,7 @@ void run_macro(const MacroRunArgs& args) {
   ImpactTracker impact;
   impact.thickness_m = settings.target.thickness_m();
   impact.impact_velocity_m_s = settings.projectile.velocity_m_s;
+  impact.flight_direction = flight_direction(settings.projectile);
   for (const double m : solver.particles().mass) impact.target_mass_kg += m;
   BalanceTracker balance;
   fields.write(solver);

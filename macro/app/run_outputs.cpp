@@ -1,5 +1,6 @@
 #include "run_outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -10,7 +11,7 @@
 namespace uhpc::macro {
 
 FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material)
-    : writer_(dir, "fields"), law_fields_(law_output_fields(material)) {}
+    : writer_(dir, "fields"), sphere_writer_(dir, "sphere"), law_fields_(law_output_fields(material)) {}
 
 void FieldOutput::write(const ExplicitSolver& solver) {
   if (solver.time() <= last_time_) return;
@@ -38,6 +39,9 @@ void FieldOutput::write(const ExplicitSolver& solver) {
     fields.push_back({law_fields_[f], "1", 1, column_.data() + f * p.n});
   }
   writer_.write_step(solver.time(), p.n, 3, p.x.data(), fields);
+  const RigidSphere& sphere = solver.sphere();
+  sphere_writer_.write_step(solver.time(), 1, 3, sphere.x.data(),
+                            {{"radius", "m", 1, &sphere.radius_m}, {"velocity", "m/s", 3, sphere.v.data()}});
   last_time_ = solver.time();
 }
 
@@ -95,7 +99,13 @@ void ImpactTracker::update(const ExplicitSolver& s) {
     return;
   }
   outcome_time_s = s.time();
-  residual_velocity_m_s = sp.v[2];
+  const Vec3& d = flight_direction;
+  residual_velocity_m_s = sp.v[0] * d[0] + sp.v[1] * d[1] + sp.v[2] * d[2];
+  residual_speed_m_s = std::sqrt(sp.v[0] * sp.v[0] + sp.v[1] * sp.v[1] + sp.v[2] * sp.v[2]);
+  deflection_deg = residual_speed_m_s > 0.0
+                       ? std::acos(std::clamp(residual_velocity_m_s / residual_speed_m_s, -1.0, 1.0)) * 180.0 /
+                             std::acos(-1.0)
+                       : 0.0;
 }
 
 double BalanceTracker::energy_error(const ExplicitSolver& s) {

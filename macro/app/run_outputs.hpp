@@ -23,14 +23,21 @@ namespace uhpc::macro {
 
 class FieldOutput {
  public:
+  // Writes DIR/fields.{h5,xdmf} (the particles) and DIR/sphere.{h5,xdmf} (the projectile).
   FieldOutput(const std::filesystem::path& dir, const MaterialSet& material);
   // Appends the solver's current state (skipped when a state of the same time was written last).
   void write(const ExplicitSolver& solver);
-  void write_provenance(const Provenance& provenance) { writer_.write_provenance(provenance); }
+  void write_provenance(const Provenance& provenance) {
+    writer_.write_provenance(provenance);
+    sphere_writer_.write_provenance(provenance);
+  }
   std::size_t steps_written() const { return writer_.steps_written(); }
 
  private:
   ParticleFieldWriter writer_;
+  // The projectile, one point per step with its radius and velocity (sphere.xdmf: in ParaView, a Glyph
+  // of type Sphere scaled by "radius" with scale factor 2 draws it over fields.xdmf).
+  ParticleFieldWriter sphere_writer_;
   std::vector<std::string> law_fields_;
   std::vector<double> pressure_, equivalent_, dissipated_, law_values_, column_;
   double last_time_ = -1.0;
@@ -63,10 +70,15 @@ const char* to_string(ImpactOutcome outcome);
 struct ImpactTracker {
   double thickness_m = 0.0;
   double impact_velocity_m_s = 0.0;
+  Vec3 flight_direction{0.0, 0.0, 1.0};  // unit, of the impact (case_config.hpp)
   double target_mass_kg = 0.0;
   ImpactOutcome outcome = ImpactOutcome::Undecided;
   double outcome_time_s = -1.0;
+  // At the outcome: the velocity along the impact's flight direction (what the experiments' residual
+  // velocity is for a normal impact), the speed, and the angle between the velocity and that direction.
   double residual_velocity_m_s = 0.0;
+  double residual_speed_m_s = 0.0;
+  double deflection_deg = 0.0;
   void update(const ExplicitSolver& solver);
   bool decided() const { return outcome != ImpactOutcome::Undecided; }
   bool perforated() const { return outcome == ImpactOutcome::Perforated; }

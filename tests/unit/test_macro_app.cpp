@@ -3,7 +3,9 @@
 // (the last step of fields.h5, the last row of history.csv), and no result.json.
 #include <sys/wait.h>
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -310,6 +312,75 @@ TEST_F(MacroApp, ASphereThatStopsInTheTargetIsEmbedded) {
   const double M = 9.071e-3, block = 0.048 * 0.048 * 0.016 * 2555.7, vz = r.at("residual_velocity_m_s").get<double>();
   EXPECT_LE(vz, (M * 100.0 - M * vz) / block + 0.05);
   EXPECT_LT(r.at("end_time_s").get<double>(), r.at("outcome_time_s").get<double>() + 2.5e-6);
+}
+
+// The impact geometry. A normal impact on the axis starts exactly where and as fast as before the
+// obliquity and offset keys existed, (0, 0, -(R + gap)) at (0, 0, v): bit for bit, so the paper's shots
+// are unchanged. An oblique, offset sphere first touches the entry face at (offset, 0, 0).
+TEST(MacroCaseSetup, TheImpactGeometryPlacesTheSphereOnItsFlightLine) {
+  const std::string file = std::string(UHPC_DATA_DIR) + "/macro_disc_afc.json";
+  const ProjectileSettings normal = read_case(Config::load(file, {})).projectile;
+  const RigidSphere a = make_projectile(normal);
+  const double start_z = -(normal.radius_m + normal.initial_gap_m), v = normal.velocity_m_s;
+  EXPECT_EQ(std::memcmp(a.x.data(), std::array<double, 3>{0.0, 0.0, start_z}.data(), sizeof(a.x)), 0);
+  EXPECT_EQ(std::memcmp(a.v.data(), std::array<double, 3>{0.0, 0.0, v}.data(), sizeof(a.v)), 0);
+
+  const ProjectileSettings oblique =
+      read_case(Config::load(file, {"projectile.obliquity_deg=30", "projectile.offset_m=0.05"})).projectile;
+  const RigidSphere b = make_projectile(oblique);
+  const double s30 = 0.5, c30 = std::sqrt(3.0) / 2;
+  EXPECT_NEAR(b.v[0], v * s30, 1e-12 * v);
+  EXPECT_EQ(b.v[1], 0.0);
+  EXPECT_NEAR(b.v[2], v * c30, 1e-12 * v);
+  EXPECT_NEAR(std::hypot(b.v[0], b.v[2]), v, 1e-12 * v);
+  // Moving the centre along v until its z is -R brings it to (offset, 0, -R): the first touch.
+  const double t = (-oblique.radius_m - b.x[2]) / b.v[2];
+  EXPECT_NEAR(b.x[0] + t * b.v[0], 0.05, 1e-15);
+  EXPECT_NEAR(b.x[2], -oblique.radius_m - oblique.initial_gap_m, 1e-15);
+
+  const auto refused = [&](const std::vector<std::string>& overrides) {
+    return test::error_of<InputError>([&] { read_case(Config::load(file, overrides)); });
+  };
+  EXPECT_EQ(refused({"projectile.obliquity_deg=85"}),
+            file + ": key 'projectile.obliquity_deg': value 85 is out of range, must be in [0, 80]");
+  // The shipped disc: radius 0.2032 m, rim band 0.01 m held in the frame, sphere radius 6.35 mm.
+  EXPECT_EQ(refused({"projectile.offset_m=0.19"}),
+            file + ": key 'projectile.offset_m': the sphere would first touch the target beyond 0.1963 m from the "
+                   "axis (offset + radius must be < 0.1932 m: the inner edge of the rim band)");
+}
+
+// An oblique, offset shot conserves momentum (a free block: no external impulse), its x component too,
+// and the run records the geometry it ran.
+TEST_F(MacroApp, AnObliqueOffsetShotConservesMomentum) {
+  MacroRunArgs args;
+  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  args.overrides = {"projectile.obliquity_deg=30", "projectile.offset_m=0.004", "run.end_time_s=3e-5"};
+  args.out = dir_;
+  args.quiet = true;
+  run_macro(args);
+  const nlohmann::json r = nlohmann::json::parse(test::read_file(dir_ / "result.json"));
+  const nlohmann::json& p = r.at("momentum");
+  std::printf("30 degrees, 4 mm off the axis, 30 us: momentum initial (%.6f, %.6f, %.6f), final (%.6f, %.6f, %.6f) "
+              "N s, worst balance error %.3e\n",
+              p.at("initial_N_s")[0].get<double>(), p.at("initial_N_s")[1].get<double>(),
+              p.at("initial_N_s")[2].get<double>(), p.at("final_N_s")[0].get<double>(),
+              p.at("final_N_s")[1].get<double>(), p.at("final_N_s")[2].get<double>(),
+              p.at("worst_balance_error").get<double>());
+  EXPECT_NEAR(p.at("initial_N_s")[0].get<double>(), 9.071e-3 * 100.0 * 0.5, 1e-12);
+  EXPECT_LT(p.at("worst_balance_error").get<double>(), 1e-10);
+  for (int d = 0; d < 3; ++d)
+    EXPECT_NEAR(p.at("final_N_s")[d].get<double>(), p.at("initial_N_s")[d].get<double>(), 1e-10);
+  EXPECT_EQ(r.at("inputs").at("projectile").at("obliquity_deg"), 30);
+
+  // The sphere is in the field output beside the particles, step for step: sphere.{h5,xdmf}.
+  const H5Reader fields(dir_ / "fields.h5"), sphere(dir_ / "sphere.h5");
+  const std::vector<std::string> steps = sphere.children("");
+  ASSERT_EQ(steps, fields.children(""));
+  ASSERT_GE(steps.size(), 2u);
+  EXPECT_EQ(sphere.read_doubles(steps.back() + "/radius").values, std::vector<double>{0.00635});
+  EXPECT_EQ(sphere.read_doubles(steps.back() + "/position").values,
+            r.at("final_sphere_position_m").get<std::vector<double>>());
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "sphere.xdmf"));
 }
 
 TEST(MacroCaseConfig, StrainConfigurationNames) {
