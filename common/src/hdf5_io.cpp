@@ -670,6 +670,11 @@ H5Array<double> H5Reader::read_doubles(const std::string& dataset) const {
   return read_array<double>(state_->name, state_->file, dataset, H5T_NATIVE_DOUBLE, false);
 }
 
+H5Array<std::uint8_t> H5Reader::read_bytes(const std::string& dataset) const {
+  QuietErrors quiet;
+  return read_array<std::uint8_t>(state_->name, state_->file, dataset, H5T_NATIVE_UINT8, true);
+}
+
 H5Array<std::int64_t> H5Reader::read_int64(const std::string& dataset) const {
   QuietErrors quiet;
   return read_array<std::int64_t>(state_->name, state_->file, dataset, H5T_NATIVE_INT64, true);

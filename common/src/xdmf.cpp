@@ -111,6 +111,28 @@ ParticleFieldWriter::ParticleFieldWriter(std::filesystem::path dir, std::string 
   H5Appender::create(h5_path_, options_).close();
 }
 
+ParticleFieldWriter::ParticleFieldWriter(std::filesystem::path dir, std::string basename, std::vector<XdmfStep> steps,
+                                         H5WriteOptions options)
+    : h5_path_(dir / (basename + ".h5")), xdmf_path_(dir / (basename + ".xdmf")), options_(options),
+      steps_(std::move(steps)) {
+  std::set<std::string> kept;
+  for (const XdmfStep& s : steps_) kept.insert(s.group);
+  std::vector<std::string> later;
+  {
+    const H5Reader h5(h5_path_);
+    for (const XdmfStep& s : steps_)
+      if (!h5.has(s.group)) throw std::runtime_error(h5_path_.string() + ": step group '" + s.group + "' is missing");
+    for (const std::string& group : h5.children(""))
+      if (group.rfind("step_", 0) == 0 && kept.count(group) == 0) later.push_back(group);
+  }
+  if (!later.empty()) {
+    H5Appender h5 = H5Appender::open(h5_path_, options_);
+    for (const std::string& group : later) h5.remove(group);
+    h5.close();
+  }
+  write_text_atomic(xdmf_path_, xdmf_document(h5_path_.filename().string(), steps_));
+}
+
 void ParticleFieldWriter::check_step(double time_s, std::size_t count, int dim, const double* positions,
                                      const std::vector<ParticleField>& fields) const {
   const std::string where = h5_path_.string() + ": step " + std::to_string(steps_.size()) + ": ";

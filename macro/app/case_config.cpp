@@ -68,6 +68,7 @@ RunSettings read_run(const Config& r) {
   s.stop_after_outcome_s = r.number("stop_after_outcome_s", Range::any());
   s.max_steps = r.integer("max_steps", Range::at_least(1));
   s.max_particles = r.integer("max_particles", Range::closed(1, 2147483647.0));
+  s.checkpoint_interval_steps = r.integer("checkpoint_interval_steps", Range::non_negative());
   return s;
 }
 

@@ -63,6 +63,11 @@ struct RunSettings {
   // The size budget: a target that would hold more particles than this is refused before it is built
   // (exit 2, with the estimated count and memory). At most 2^31 - 1: particle indices are 32-bit.
   std::int64_t max_particles = 0;
+  // Every N steps DIR/checkpoint.h5 (checkpoint.hpp), from which --restart goes on bit for bit; 0: none.
+  // Writing one drops the shape cache (its lazy rows are rebuilt at the next step), so a run with
+  // checkpoints differs from one without by the rows' reuse tolerance, and a resumed run equals the run
+  // it resumes exactly.
+  std::int64_t checkpoint_interval_steps = 0;
 };
 
 struct CaseSettings {

@@ -1,6 +1,6 @@
 // uhpc-macro: one 3D penetration run (ARCHITECTURE.md section 2).
 //
-//   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q]
+//   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q] [--restart]
 //
 // Writes DIR/result.json, DIR/history.csv and DIR/fields.h5 + DIR/fields.xdmf (ParaView); on a
 // numerical failure, the last good state in fields.h5 and DIR/diagnostic.json (exit code 1). Bad input:
@@ -23,6 +23,9 @@ int main(int argc, char** argv) {
   app.add_option("--sdel", args.sdel_path, "SDEL handoff (sdel.json); validated, used by laws with the SDEL");
   app.add_option("--out", out, "output directory")->required();
   app.add_flag("-q,--quiet", args.quiet, "warnings and errors only");
+  app.add_flag("--restart", args.restart,
+               "go on from OUT/checkpoint.h5 (a run of the same case, --sdel, --set and build with "
+               "run.checkpoint_interval_steps > 0) instead of starting at t = 0");
   uhpc::add_set_option(app, args.overrides);
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);

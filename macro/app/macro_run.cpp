@@ -12,6 +12,7 @@
 
 #include "case_config.hpp"
 #include "case_setup.hpp"
+#include "checkpoint.hpp"
 #include "material_factory.hpp"
 #include "run_inputs.hpp"
 #include "run_outputs.hpp"
@@ -151,29 +152,64 @@ void run_macro(const MacroRunArgs& args) {
   if (sdel && !material.uses_sdel)
     spdlog::info("the '{}' law does not use the SDEL: {} was validated and is ignored", material.model, args.sdel_path);
 
-  fs::create_directories(args.out);
-  for (const char* stale : {"result.json", "diagnostic.json", "history.csv", "config.json"}) fs::remove(args.out / stale);
   const RunInputs inputs = run_inputs(cfg, args.config_path, args.overrides, args.sdel_path, material.inputs);
+  const fs::path checkpoint_file = args.out / "checkpoint.h5";
+  std::optional<RunCheckpoint> resumed;
+  if (args.restart) resumed = read_checkpoint(checkpoint_file, inputs.hash);
+  fs::create_directories(args.out);
+  for (const char* stale : {"result.json", "diagnostic.json"}) fs::remove(args.out / stale);
+  if (!resumed) {
+    for (const char* stale : {"history.csv", "config.json", "checkpoint.h5"}) fs::remove(args.out / stale);
+  }
   write_text_atomic(args.out / "config.json", inputs.record.dump(2) + "\n");
   const Provenance provenance = Provenance::make("uhpc-macro", inputs.hash);
 
   ExplicitSolver solver = make_solver(settings, body, std::move(material.set));
+  if (resumed) {
+    try {
+      solver.resume(resumed->solver);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(checkpoint_file.string() + ": does not fit this case: " + e.what());
+    }
+    spdlog::info("restarting from {} at step {}, t = {:.6e} s", checkpoint_file.string(), solver.steps(), solver.time());
+  }
   refuse_beyond_budget(cfg, settings.run, solver.dt());
   spdlog::info("{} particles, material '{}', sphere {} kg at {} m/s, first step {:.3e} s, end time {:.3e} s",
                solver.particles().n, material.model, settings.projectile.mass_kg, settings.projectile.velocity_m_s,
                solver.dt(), settings.run.end_time_s);
 
-  FieldOutput fields(args.out, solver.material());
+  std::optional<FieldOutput> field_output;
+  if (resumed) field_output.emplace(args.out, solver.material(), resumed->fields);
+  else field_output.emplace(args.out, solver.material());
+  FieldOutput& fields = *field_output;
   fields.write_provenance(provenance);
-  History history;
+  History history = resumed ? History(resumed->history_text, resumed->history_rows) : History();
   ImpactTracker impact;
   impact.thickness_m = settings.target.thickness_m();
   impact.impact_velocity_m_s = settings.projectile.velocity_m_s;
   impact.flight_direction = flight_direction(settings.projectile);
   for (const double m : solver.particles().mass) impact.target_mass_kg += m;
   BalanceTracker balance;
-  fields.write(solver);
-  history.add(solver);
+  if (resumed) {
+    impact = resumed->impact;
+    balance = resumed->balance;
+  } else {
+    fields.write(solver);
+    history.add(solver);
+  }
+  // Checkpoints drop the shape cache where they are written, so the run that writes them and a run
+  // resumed from one rebuild every row from the same state (ExplicitSolver::resume).
+  const auto write_checkpoint_now = [&] {
+    solver.drop_shape_cache();
+    history.save(args.out / "history.csv");
+    write_checkpoint(checkpoint_file, {solver.checkpoint(), history.text(), history.rows(), impact, balance,
+                                       fields.state(), inputs.hash, checkpoint_build()});
+  };
+  const auto finished = [&] {
+    const bool stop_after_outcome = impact.decided() && settings.run.stop_after_outcome_s >= 0 &&
+                                    solver.time() >= impact.outcome_time_s + settings.run.stop_after_outcome_s;
+    return solver.time() >= settings.run.end_time_s || stop_after_outcome;
+  };
 
   // Progress over simulated time, counted in nanoseconds; the step rate goes into the log lines.
   const auto total_ns = static_cast<std::uint64_t>(std::llround(settings.run.end_time_s * 1e9));
@@ -181,10 +217,14 @@ void run_macro(const MacroRunArgs& args) {
   Progress progress("uhpc-macro simulated", total_ns,
                     ProgressOptions{args.quiet ? &quiet_sink : nullptr, -1, 10, 0.1, "ns"});
   std::uint64_t done_ns = 0;
+  if (resumed) {
+    done_ns = static_cast<std::uint64_t>(std::llround(std::fmin(solver.time(), settings.run.end_time_s) * 1e9));
+    progress.advance(done_ns);
+  }
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
-  while (solver.time() < settings.run.end_time_s) {
+  while (!finished()) {
     if (!solver.step()) {
       // The solver is back in the last good state: keep it, say what failed, and stop.
       progress.finish();
@@ -207,14 +247,13 @@ void run_macro(const MacroRunArgs& args) {
                    solver.steps(), solver.time() * 1e6, solver.steps() / elapsed(), solver.sphere().x[2] * 1e3,
                    solver.sphere().v[2], solver.contact().particles_in_contact);
     }
+    if (settings.run.checkpoint_interval_steps > 0 && solver.steps() % settings.run.checkpoint_interval_steps == 0)
+      write_checkpoint_now();
     const auto now_ns = static_cast<std::uint64_t>(std::llround(std::fmin(solver.time(), settings.run.end_time_s) * 1e9));
     if (now_ns > done_ns) {
       progress.advance(now_ns - done_ns);
       done_ns = now_ns;
     }
-    if (impact.decided() && settings.run.stop_after_outcome_s >= 0 &&
-        solver.time() >= impact.outcome_time_s + settings.run.stop_after_outcome_s)
-      break;
   }
   progress.finish();
   if (!impact.decided())
@@ -227,6 +266,7 @@ void run_macro(const MacroRunArgs& args) {
   nlohmann::json result = result_json(solver, impact, balance, material.model, wall, provenance, fields.steps_written());
   result["inputs"] = inputs_summary(inputs);
   write_text_atomic(args.out / "result.json", result.dump(2) + "\n");
+  fs::remove(checkpoint_file);  // the run is complete: its results replace the checkpoint
   spdlog::info("{} steps ({} repeated) in {:.2f} s, {:.3g} particle-steps/s; sphere v_z {:.2f} m/s ({}); energy "
                "balance {:.2e}, momentum balance {:.2e}",
                solver.steps(), solver.step_repeats(), wall, result["particle_steps_per_s"].get<double>(),

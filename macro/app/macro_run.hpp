@@ -16,6 +16,9 @@ struct MacroRunArgs {
   std::string sdel_path;  // empty: none
   std::filesystem::path out;
   bool quiet = false;  // no progress line
+  // Go on from out/checkpoint.h5 (written by a run of the same case, --sdel and --set, and the same
+  // build, with run.checkpoint_interval_steps > 0) instead of starting at t = 0.
+  bool restart = false;
 };
 
 void run_macro(const MacroRunArgs& args);

@@ -13,6 +13,12 @@ namespace uhpc::macro {
 FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material)
     : writer_(dir, "fields"), sphere_writer_(dir, "sphere"), law_fields_(law_output_fields(material)) {}
 
+FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, const FieldOutputState& resumed)
+    : writer_(dir, "fields", resumed.particle_steps),
+      sphere_writer_(dir, "sphere", resumed.sphere_steps),
+      law_fields_(law_output_fields(material)),
+      last_time_(resumed.last_time_s) {}
+
 void FieldOutput::write(const ExplicitSolver& solver) {
   if (solver.time() <= last_time_) return;
   const Particles& p = solver.particles();

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -21,10 +22,20 @@
 
 namespace uhpc::macro {
 
+// What a checkpoint records of the field output: the steps each file holds so far.
+struct FieldOutputState {
+  std::vector<XdmfStep> particle_steps, sphere_steps;
+  double last_time_s = -1.0;
+};
+
 class FieldOutput {
  public:
   // Writes DIR/fields.{h5,xdmf} (the particles) and DIR/sphere.{h5,xdmf} (the projectile).
   FieldOutput(const std::filesystem::path& dir, const MaterialSet& material);
+  // Goes on with the files of an interrupted run from what its checkpoint recorded (steps written
+  // after the checkpoint are dropped).
+  FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, const FieldOutputState& resumed);
+  FieldOutputState state() const { return {writer_.steps(), sphere_writer_.steps(), last_time_}; }
   // Appends the solver's current state (skipped when a state of the same time was written last).
   void write(const ExplicitSolver& solver);
   void write_provenance(const Provenance& provenance) {
@@ -46,7 +57,9 @@ class FieldOutput {
 class History {
  public:
   History();
+  History(std::string text, std::size_t rows) : text_(std::move(text)), rows_(rows) {}  // a checkpoint's
   void add(const ExplicitSolver& solver);
+  const std::string& text() const { return text_; }
   void save(const std::filesystem::path& file) const;  // atomic
   std::size_t rows() const { return rows_; }
 

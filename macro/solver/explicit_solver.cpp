@@ -3,8 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <type_traits>
 #include <utility>
 
 #include "solver/kinematics.hpp"
@@ -89,12 +93,9 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
   const double reuse = options_.shape_reuse_tolerance;
   if (reuse != 0 && !(reuse > 0 && reuse < 0.5 * options_.neighbour_skin))
     throw std::invalid_argument("ExplicitSolver: shape_reuse_tolerance must be 0 or in (0, neighbour_skin / 2)");
-  shapes_.skin = options_.neighbour_skin;
-  shapes_.reuse_tolerance = options_.shape_reuse_tolerance;
   if (!(options_.fragment_rcond >= 0 && options_.fragment_rcond < 1))
     throw std::invalid_argument("ExplicitSolver: fragment_rcond must be in [0, 1)");
-  shapes_.fragment_rcond = options_.fragment_rcond;
-  shapes_.keep_psi = false;  // the step reads only the gradients
+  shapes_ = empty_shape_cache();
   f_ext_old_.assign(3 * p_.n, 0.0);
   f_contact_old_.assign(3 * p_.n, 0.0);
   if (p_.f_contact.size() != 3 * p_.n) p_.f_contact.assign(3 * p_.n, 0.0);
@@ -108,6 +109,15 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
     vel_grad_start_.assign(9 * p_.n, 0.0);
     if (second_options()) vel_grad_grad_start_.assign(27 * p_.n, 0.0);
   }
+}
+
+ShapeCache ExplicitSolver::empty_shape_cache() const {
+  ShapeCache cache;
+  cache.skin = options_.neighbour_skin;
+  cache.reuse_tolerance = options_.shape_reuse_tolerance;
+  cache.fragment_rcond = options_.fragment_rcond;
+  cache.keep_psi = false;  // the step reads only the gradients
+  return cache;
 }
 
 void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
@@ -527,12 +537,27 @@ void copy_same_size(const std::vector<double>& from, std::vector<double>& to) {
 // The particle fields a step changes and the next step reads before it rewrites them. Not copied:
 // the constants of the step loop (mass, volume0, spacing, support) and the per-step scratch each
 // step recomputes before use (x_prev, x_mid, vel_grad, vel_grad_grad).
+struct EvolvingField {
+  const char* name;
+  std::vector<double> Particles::*field;
+};
+constexpr EvolvingField kEvolvingFields[] = {
+    {"x", &Particles::x},           {"v", &Particles::v},
+    {"a", &Particles::a},           {"f_int", &Particles::f_int},
+    {"f_ext", &Particles::f_ext},   {"f_contact", &Particles::f_contact},
+    {"volume", &Particles::volume}, {"density", &Particles::density},
+    {"stress", &Particles::stress}, {"bulk_q", &Particles::bulk_q},
+    {"wave_speed", &Particles::wave_speed}, {"work", &Particles::work},
+    {"stress_grad", &Particles::stress_grad}, {"stress_grad_nominal", &Particles::stress_grad_nominal}};
+
 void copy_evolving_state(const Particles& from, Particles& to) {
-  for (auto field : {&Particles::x, &Particles::v, &Particles::a, &Particles::f_int, &Particles::f_ext,
-                     &Particles::f_contact, &Particles::volume, &Particles::density, &Particles::stress,
-                     &Particles::bulk_q, &Particles::wave_speed, &Particles::work, &Particles::stress_grad,
-                     &Particles::stress_grad_nominal})
-    copy_same_size(from.*field, to.*field);
+  for (const EvolvingField& f : kEvolvingFields) copy_same_size(from.*f.field, to.*f.field);
+}
+
+void check_size(const char* what, std::size_t got, std::size_t expected) {
+  if (got != expected)
+    throw std::invalid_argument(std::string("ExplicitSolver::resume: ") + what + ": " + std::to_string(got) +
+                                " values, the solver has " + std::to_string(expected));
 }
 }  // namespace
 
@@ -566,6 +591,82 @@ void ExplicitSolver::restore_state() {
   time_ = saved_.time;
   dt_ = saved_.dt;
   wall_force_ = saved_.wall_force;
+}
+
+SolverCheckpoint ExplicitSolver::checkpoint() const {
+  SolverCheckpoint c;
+  for (const EvolvingField& f : kEvolvingFields) c.particle_fields.emplace_back(f.name, p_.*f.field);
+  std::visit(
+      [&](const auto& block) {
+        using State = typename std::decay_t<decltype(block.state)>::value_type;
+        // The states hold scalars and fixed-size Eigen matrices only: standard layout, nothing to free, no
+        // pointers, so their bytes are their values (Eigen's copy constructor keeps them from being
+        // "trivially copyable" in the standard's sense).
+        static_assert(std::is_standard_layout_v<State> && std::is_trivially_destructible_v<State>,
+                      "a checkpoint copies the material states as bytes");
+        const auto* bytes = reinterpret_cast<const std::uint8_t*>(block.state.data());
+        c.material_states.assign(bytes, bytes + block.state.size() * sizeof(State));
+      },
+      material_);
+  c.f_ext_old = f_ext_old_;
+  c.f_contact_old = f_contact_old_;
+  c.sphere = sphere_;
+  c.sphere_force_old = sphere_force_old_;
+  c.contact = contact_;
+  c.ledger = ledger_;
+  c.time_s = time_;
+  c.dt_s = dt_;
+  c.wall_force_N = wall_force_;
+  c.last_dt_s = last_dt_;
+  c.steps = steps_;
+  c.repeats = repeats_;
+  return c;
+}
+
+void ExplicitSolver::resume(const SolverCheckpoint& c) {
+  if (!initialized_) throw std::logic_error("ExplicitSolver::resume: call after initialize()");
+  // The fields by name (a file may list them in another order), each of the solver's size.
+  std::vector<const std::vector<double>*> fields;
+  for (const EvolvingField& f : kEvolvingFields) {
+    const auto it = std::find_if(c.particle_fields.begin(), c.particle_fields.end(),
+                                 [&](const auto& named) { return named.first == f.name; });
+    if (it == c.particle_fields.end())
+      throw std::invalid_argument(std::string("ExplicitSolver::resume: no particle field '") + f.name + "'");
+    check_size(f.name, it->second.size(), (p_.*f.field).size());
+    fields.push_back(&it->second);
+  }
+  check_size("particle fields", c.particle_fields.size(), std::size(kEvolvingFields));
+  const std::size_t state_bytes = std::visit(
+      [](const auto& block) { return block.state.size() * sizeof(typename std::decay_t<decltype(block.state)>::value_type); },
+      material_);
+  check_size("material state bytes", c.material_states.size(), state_bytes);
+  check_size("f_ext_old", c.f_ext_old.size(), f_ext_old_.size());
+  check_size("f_contact_old", c.f_contact_old.size(), f_contact_old_.size());
+  if (c.sphere.has_value() != sphere_.has_value())
+    throw std::invalid_argument("ExplicitSolver::resume: the checkpoint and the solver disagree on the sphere");
+  // Everything checked: now the state is replaced.
+  for (std::size_t k = 0; k < fields.size(); ++k) p_.*kEvolvingFields[k].field = *fields[k];
+  std::visit([&](auto& block) { std::memcpy(static_cast<void*>(block.state.data()), c.material_states.data(), state_bytes); },
+             material_);
+  f_ext_old_ = c.f_ext_old;
+  f_contact_old_ = c.f_contact_old;
+  sphere_ = c.sphere;
+  sphere_force_old_ = c.sphere_force_old;
+  contact_ = c.contact;
+  ledger_ = c.ledger;
+  time_ = c.time_s;
+  dt_ = c.dt_s;
+  wall_force_ = c.wall_force_N;
+  last_dt_ = c.last_dt_s;
+  steps_ = c.steps;
+  repeats_ = c.repeats;
+  drop_shape_cache();
+  save_state();
+}
+
+void ExplicitSolver::drop_shape_cache() {
+  shapes_ = empty_shape_cache();
+  shapes_at_x_ = false;
 }
 
 }  // namespace uhpc::macro

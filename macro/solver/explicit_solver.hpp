@@ -22,6 +22,8 @@
 // Nothing allocates inside steps once the neighbour counts have settled.
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "solver/conditions.hpp"
@@ -94,6 +96,21 @@ struct SolverOptions {
   double domain_margin = 1.0;
 };
 
+// What a run needs to go on bit for bit after a successful step: the evolving state save_state()
+// keeps (the particle fields a step reads back, the material states, the old forces, the sphere, the
+// contact's last evaluation, the ledger) and the clocks. Written and read by macro/app/checkpoint.hpp.
+struct SolverCheckpoint {
+  std::vector<std::pair<std::string, std::vector<double>>> particle_fields;  // name, values
+  std::vector<std::uint8_t> material_states;  // the law's states, byte for byte
+  std::vector<double> f_ext_old, f_contact_old;
+  std::optional<RigidSphere> sphere;
+  Vec3 sphere_force_old{};
+  SphereContactSums contact;
+  EnergyLedger ledger;
+  double time_s = 0.0, dt_s = 0.0, wall_force_N = 0.0, last_dt_s = 0.0;
+  std::int64_t steps = 0, repeats = 0;
+};
+
 class ExplicitSolver {
  public:
   // `particles` must come from Particles::from_body with the density of the material.
@@ -112,6 +129,15 @@ class ExplicitSolver {
   // the solver is then back in the state before the step (the last good state) and failure() describes
   // the failed attempt.
   bool step();
+
+  // Checkpoints. checkpoint() copies the state after the last step. resume() hands it to a solver built
+  // and initialized from the same case, which then goes on exactly as the one that wrote it (throws
+  // std::invalid_argument when the sizes or the law do not match). The shape cache is not part of a
+  // checkpoint: a run drops it where it writes one (drop_shape_cache), and resume() starts without it,
+  // so both rebuild every row from the same state at the next step.
+  SolverCheckpoint checkpoint() const;
+  void resume(const SolverCheckpoint& checkpoint);
+  void drop_shape_cache();
 
   double time() const { return time_; }
   double dt() const { return options_.fixed_dt_s > 0 ? options_.fixed_dt_s : dt_; }
@@ -168,6 +194,7 @@ class ExplicitSolver {
   std::vector<Wall> walls_;
   std::vector<PrescribedVelocity> prescribed_;
   ShapeCache shapes_;
+  ShapeCache empty_shape_cache() const;  // configured from options_, no rows
   // shapes_ were built at the current x (false after restore_state: they are the failed attempt's).
   bool shapes_at_x_ = false;
   // EndpointAverage: L and (NSNI) dL/dx with the start-of-step gradients; sized once in the constructor.

@@ -187,6 +187,8 @@ class H5Reader {
   H5Array<double> read_doubles(const std::string& dataset) const;
   // Integer datasets only (a floating-point dataset throws rather than truncating).
   H5Array<std::int64_t> read_int64(const std::string& dataset) const;
+  // An integer dataset as bytes (values outside 0..255 are a conversion error).
+  H5Array<std::uint8_t> read_bytes(const std::string& dataset) const;
   // The dataset's "units" attribute; throws if it is missing.
   std::string units(const std::string& dataset) const;
 

@@ -69,6 +69,11 @@ class ParticleFieldWriter {
   // `basename` may use letters, digits, '_', '-', '+', '.'.
   explicit ParticleFieldWriter(std::filesystem::path dir, std::string basename = "fields",
                                H5WriteOptions options = {});
+  // Goes on with the output of an interrupted run: keeps `steps` (what a checkpoint recorded of the
+  // existing "<basename>.h5"), removes any later step group the run wrote after it, and rewrites the
+  // .xdmf. Throws std::runtime_error when the .h5 lacks one of `steps`.
+  ParticleFieldWriter(std::filesystem::path dir, std::string basename, std::vector<XdmfStep> steps,
+                      H5WriteOptions options = {});
 
   // Appends one step: `count` particles (count >= 1) with `dim` (2 or 3) coordinates each in
   // `positions` (count x dim, row-major, metres), plus `fields`. Times must increase strictly.
@@ -84,6 +89,7 @@ class ParticleFieldWriter {
   void write_provenance(const Provenance& provenance);
 
   std::size_t steps_written() const { return steps_.size(); }
+  const std::vector<XdmfStep>& steps() const { return steps_; }
   const std::filesystem::path& h5_path() const { return h5_path_; }
   const std::filesystem::path& xdmf_path() const { return xdmf_path_; }
 

@@ -1,0 +1,182 @@
+// Checkpoints and restarts of uhpc-macro (macro/app/checkpoint.hpp, ExplicitSolver::checkpoint/resume):
+// a run split in two at a checkpoint equals the unsplit run bit for bit, at the solver and through the
+// program (a run killed after its checkpoint and restarted with --restart); foreign checkpoints are
+// refused with one line.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "case_config.hpp"
+#include "case_setup.hpp"
+#include "checkpoint.hpp"
+#include "macro_run.hpp"
+#include "material_factory.hpp"
+#include "test_support.hpp"
+#include "uhpc/atomic_file.hpp"
+#include "uhpc/config.hpp"
+#include "uhpc/errors.hpp"
+#include "uhpc/hdf5_io.hpp"
+#include "uhpc/sdel_handoff.hpp"
+
+namespace uhpc::macro {
+namespace {
+
+namespace fs = std::filesystem;
+class MacroCheckpoint : public test::ScratchDirTest {};
+
+// The coarse AFC disc with the SDEL: NSNI, lazy shape rows and the Verlet candidates all carry state
+// from step to step, which is what a restart must get right.
+const std::string kCase = std::string(UHPC_DATA_DIR) + "/macro_disc_afc_coarse.json";
+
+ExplicitSolver coarse_disc_solver() {
+  const Config cfg = Config::load(kCase, {});
+  const CaseSettings settings = read_case(cfg);
+  const ParticleBody body = make_target_body(settings.target);
+  MaterialChoice material = make_material(cfg.section("material"), body.size(), std::nullopt);
+  return make_solver(settings, body, std::move(material.set));
+}
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// Solver A steps 60 times, drops its shape cache and is checkpointed (through the file), then steps
+// 60 more; solver B is built from the same case, resumed from the file and steps the same 60: every
+// evolving field, the material states, the sphere and the ledger are the same bits.
+TEST_F(MacroCheckpoint, ASolverResumedFromACheckpointFileGoesOnBitForBit) {
+  ExplicitSolver a = coarse_disc_solver();
+  for (int k = 0; k < 60; ++k) ASSERT_TRUE(a.step());
+  a.drop_shape_cache();
+  RunCheckpoint written;
+  written.solver = a.checkpoint();
+  written.history_text = "time_s\n";
+  written.history_rows = 1;
+  written.impact.thickness_m = 0.03175;
+  written.balance.worst_energy = 1.5e-4;
+  written.config_hash = "0123456789abcdef";
+  written.build = checkpoint_build();
+  write_checkpoint(dir_ / "checkpoint.h5", written);
+  for (int k = 0; k < 60; ++k) ASSERT_TRUE(a.step());
+
+  const RunCheckpoint read = read_checkpoint(dir_ / "checkpoint.h5", "0123456789abcdef");
+  EXPECT_EQ(read.history_text, "time_s\n");
+  EXPECT_EQ(read.balance.worst_energy, 1.5e-4);
+  ExplicitSolver b = coarse_disc_solver();
+  b.resume(read.solver);
+  EXPECT_EQ(b.steps(), 60);
+  for (int k = 0; k < 60; ++k) ASSERT_TRUE(b.step());
+
+  const SolverCheckpoint end_a = a.checkpoint(), end_b = b.checkpoint();
+  ASSERT_EQ(end_a.particle_fields.size(), end_b.particle_fields.size());
+  for (std::size_t f = 0; f < end_a.particle_fields.size(); ++f)
+    EXPECT_TRUE(same_bits(end_a.particle_fields[f].second, end_b.particle_fields[f].second))
+        << end_a.particle_fields[f].first;
+  EXPECT_TRUE(same_bits(end_a.material_states, end_b.material_states));
+  EXPECT_EQ(std::memcmp(&end_a.ledger, &end_b.ledger, sizeof(EnergyLedger)), 0);
+  EXPECT_EQ(std::memcmp(&*end_a.sphere, &*end_b.sphere, sizeof(RigidSphere)), 0);
+  EXPECT_EQ(end_a.time_s, end_b.time_s);
+  EXPECT_EQ(end_b.steps, 120);
+  // The sphere has hit the disc by then: the state resumed is a loaded one.
+  EXPECT_GT(a.ledger().internal, 1.0);
+}
+
+// Through the program: a run killed right after its first checkpoint and restarted with --restart ends
+// with the same history.csv, result.json (but for the clocks and the provenance's date) and fields as
+// the run that was never stopped (the program's stdout and stderr go to the test's).
+TEST_F(MacroCheckpoint, AKilledRunRestartedFromItsCheckpointEqualsTheUnstoppedRun) {
+  // 60 us: the sphere is inside the disc, about 140 steps.
+  const std::vector<std::string> overrides = {"run.checkpoint_interval_steps=10", "run.end_time_s=6e-5"};
+  MacroRunArgs whole;
+  whole.config_path = kCase;
+  whole.overrides = overrides;
+  whole.out = dir_ / "whole";
+  whole.quiet = true;
+  run_macro(whole);
+  EXPECT_FALSE(fs::exists(whole.out / "checkpoint.h5"));  // a finished run removes it
+
+  MacroRunArgs split = whole;
+  split.out = dir_ / "split";
+  // The program in a process of its own (fork + exec: OpenMP is not safe across a bare fork).
+  const std::string program = std::string(UHPC_BINARY_DIR) + "/macro/uhpc-macro";
+  const std::string out = split.out.string();
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    execl(program.c_str(), program.c_str(), "-q", "--config", kCase.c_str(), "--set", overrides[0].c_str(), "--set",
+          overrides[1].c_str(), "--out",
+          out.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Kill it as soon as the first checkpoint is on disk (written atomically: complete when it appears).
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(split.out / "checkpoint.h5") && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
+  ASSERT_TRUE(fs::exists(split.out / "checkpoint.h5"));
+  EXPECT_FALSE(fs::exists(split.out / "result.json"));
+
+  split.restart = true;
+  run_macro(split);
+  EXPECT_EQ(test::read_file(split.out / "history.csv"), test::read_file(whole.out / "history.csv"));
+  EXPECT_EQ(test::read_file(split.out / "fields.xdmf"), test::read_file(whole.out / "fields.xdmf"));
+  nlohmann::json a = nlohmann::json::parse(test::read_file(whole.out / "result.json"));
+  nlohmann::json b = nlohmann::json::parse(test::read_file(split.out / "result.json"));
+  for (const char* clock : {"wall_time_s", "particle_steps_per_s", "peak_memory_MB", "provenance"}) {
+    a.erase(clock);
+    b.erase(clock);
+  }
+  EXPECT_EQ(a, b);
+  const H5Reader fa(whole.out / "fields.h5"), fb(split.out / "fields.h5");
+  ASSERT_EQ(fa.children(""), fb.children(""));
+  for (const std::string& step : fa.children(""))
+    for (const std::string& field : fa.children(step))
+      EXPECT_TRUE(same_bits(fa.read_doubles(step + "/" + field).values, fb.read_doubles(step + "/" + field).values))
+          << step << "/" << field;
+}
+
+// A checkpoint of another case or another build is refused with one line naming the file.
+TEST_F(MacroCheckpoint, ACheckpointOfAnotherCaseOrBuildOrNoneIsRefused) {
+  const auto restart_error = [&](const std::vector<std::string>& overrides) {
+    MacroRunArgs args;
+    args.config_path = kCase;
+    args.overrides = overrides;
+    args.out = dir_;
+    args.quiet = true;
+    args.restart = true;
+    return test::error_of<InputError>([&] { run_macro(args); });
+  };
+  const std::string file = (dir_ / "checkpoint.h5").string();
+  EXPECT_EQ(restart_error({}), file + ": no checkpoint to restart from (the run wrote none: run.checkpoint_interval_steps)");
+
+  RunCheckpoint c;
+  c.solver = coarse_disc_solver().checkpoint();
+  c.config_hash = "0123456789abcdef";
+  c.build = checkpoint_build();
+  write_checkpoint(file, c);
+  const std::string other_case = restart_error({});
+  EXPECT_EQ(other_case.rfind(file + ": written for a case whose hash is 0123456789abcdef, this case's is ", 0), 0u)
+      << other_case;
+  c.build = "0.0.1 abc";
+  write_checkpoint(file, c);
+  EXPECT_EQ(restart_error({}), file + ": written by uhpc-macro 0.0.1 abc, this is " + checkpoint_build() +
+                                   ": a checkpoint is resumed by the build that wrote it");
+  write_text_atomic(file, "not hdf5");
+  EXPECT_EQ(restart_error({}).rfind(file + ": not a usable checkpoint: ", 0), 0u);
+}
+
+}  // namespace
+}  // namespace uhpc::macro
