@@ -7,6 +7,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #ifdef _OPENMP
@@ -92,10 +93,38 @@ nlohmann::json spread_json(const std::vector<double>& v) {
 // (separated, or stopped beyond the grid's end): an incomplete curve would bias the mean.
 bool averaged(const CellResult& r) { return r.response.status != CellStatus::Failed && r.bridged && r.resampled.complete; }
 
+// The cells (index size * realizations + realization) a run handles: every cell, or the selection's.
+// Bad input when the selection names a size or a realization the ensemble does not have.
+std::vector<std::size_t> selected_cells(const AnalysisEnsembleSettings& e, const EnsembleSelection& sel) {
+  if (sel.assemble_only && (sel.only_size_mm || sel.only_cell))
+    throw InputError("--assemble-only: cannot be combined with --only-size or --only-cell");
+  std::optional<std::size_t> size_index;
+  if (sel.only_size_mm) {
+    const double mm = *sel.only_size_mm;
+    std::string sizes;
+    for (std::size_t i = 0; i < e.sizes_m.size(); ++i) {
+      sizes += fmt::format("{}{:g}", i ? ", " : "", e.sizes_m[i] * 1e3);
+      if (std::abs(e.sizes_m[i] * 1e3 - mm) <= 1e-9 * e.sizes_m[i] * 1e3) size_index = i;
+    }
+    if (!size_index)
+      throw InputError(fmt::format("--only-size {:g}: not one of the ensemble's cell sizes ({} mm)", mm, sizes));
+  }
+  if (sel.only_cell && (*sel.only_cell < 0 || *sel.only_cell >= static_cast<long long>(e.realizations)))
+    throw InputError(fmt::format("--only-cell {}: out of range, the ensemble's realizations are 0 to {}", *sel.only_cell,
+                                 e.realizations - 1));
+  std::vector<std::size_t> cells;
+  for (std::size_t i = 0; i < e.sizes_m.size(); ++i)
+    for (std::size_t r = 0; r < e.realizations; ++r)
+      if ((!size_index || *size_index == i) && (!sel.only_cell || static_cast<long long>(r) == *sel.only_cell))
+        cells.push_back(i * e.realizations + r);
+  return cells;
+}
+
 }  // namespace
 
 int run_ensemble_command(const std::string& config_path, const std::vector<std::string>& overrides_in,
-                         const fs::path& out, int jobs, const CellAnalyzerFactory& factory) {
+                         const fs::path& out, int jobs, const CellAnalyzerFactory& factory,
+                         const EnsembleSelection& selection) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> overrides = overrides_in;
   const std::vector<std::string> cli_cell_overrides = take_cell_overrides(overrides);
@@ -113,13 +142,10 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   const std::string source = cfg.source();
 
   const std::size_t total = e.sizes_m.size() * e.realizations;
+  // A partial run (--only-size, --only-cell) handles its cells alone and writes no ensemble file.
+  const std::vector<std::size_t> chosen = selected_cells(e, selection);
+  const bool partial = selection.only_size_mm.has_value() || selection.only_cell.has_value();
   std::vector<CellOutcome> outcomes(total);
-  ProgressOptions po;
-  po.unit = "cells";
-  Progress progress("cells", total, po);
-  double total_work = 0;
-  for (double size : e.sizes_m) total_work += e.realizations * expected_cell_work(size);
-  progress.set_work_total(total_work);
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
   std::mutex error_mutex;
@@ -143,7 +169,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
     job.analysis_source = source;
     const std::string hash = cell_hash(job);
     if (std::optional<StoredCell> stored = load_cell_results(job.out_dir, hash, post_hash);
-        stored && (stored->response.status != CellStatus::Failed || !e.retry_failed)) {
+        stored && (stored->response.status != CellStatus::Failed || !e.retry_failed || selection.assemble_only)) {
       o.result = post_process(std::move(stored->response), e.post);
       o.result.reloaded = true;
       // Post-processing options changed since: refresh the derived data in the cell's files.
@@ -155,15 +181,33 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   // often the first realizations of every size).
   std::size_t reloaded_cells = 0;
   double reloaded_work = 0;
-  for (std::size_t k = 0; k < total; ++k) {
+  std::vector<std::string> unfinished;
+  for (std::size_t k : chosen) {
     prepare_or_reload(k);
     if (outcomes[k].result.reloaded) {
       ++reloaded_cells;
       reloaded_work += expected_cell_work(outcomes[k].job.size_m);
+    } else {
+      unfinished.push_back(fs::relative(outcomes[k].job.out_dir, out).string());
     }
   }
+  // --assemble-only analyses nothing: the cells must all be there, finished with this configuration.
+  if (selection.assemble_only && !unfinished.empty()) {
+    std::string list;
+    for (std::size_t n = 0; n < unfinished.size() && n < 5; ++n) list += (n ? ", " : "") + unfinished[n];
+    if (unfinished.size() > 5) list += ", ...";
+    throw InputError(fmt::format("--assemble-only: {} of {} cells in {} are not finished with this configuration ({}): "
+                                 "run them first (--only-cell, --only-size, or without --assemble-only)",
+                                 unfinished.size(), total, out.string(), list));
+  }
+  ProgressOptions po;
+  po.unit = "cells";
+  Progress progress("cells", chosen.size(), po);
+  double total_work = 0;
+  for (std::size_t k : chosen) total_work += expected_cell_work(e.sizes_m[k / e.realizations]);
+  progress.set_work_total(total_work);
   if (reloaded_cells > 0) {
-    spdlog::info("{} of {} cells reloaded from {}", reloaded_cells, total, out.string());
+    spdlog::info("{} of {} cells reloaded from {}", reloaded_cells, chosen.size(), out.string());
     progress.skip(reloaded_cells, reloaded_work);
   }
 
@@ -189,7 +233,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
                    o.result.response.diagnostic);
   };
   std::size_t threads = jobs > 0 ? static_cast<std::size_t>(jobs) : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min(threads, total);
+  threads = std::min(threads, chosen.size());
   const auto worker = [&] {
 #ifdef _OPENMP
     // [choice] With several cells at once each solve runs serially (its OpenMP loops get one thread in
@@ -198,10 +242,10 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
 #endif
     while (!stop.load()) {
       const std::size_t taken = next.fetch_add(1);
-      if (taken >= total) break;
+      if (taken >= chosen.size()) break;
       // Largest cells first (sizes are ascending): the longest solves start first and the workers
       // finish together instead of one of them ending the run alone on a 6.5 mm cell.
-      const std::size_t k = total - 1 - taken;
+      const std::size_t k = chosen[chosen.size() - 1 - taken];
       if (outcomes[k].result.reloaded) continue;
       try {
         do_cell(k);
@@ -223,6 +267,17 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   }
   if (input_error) std::rethrow_exception(input_error);
   progress.finish();
+
+  if (partial) {
+    std::size_t failed = 0;
+    for (std::size_t k : chosen)
+      if (outcomes[k].result.response.status == CellStatus::Failed) ++failed;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("%zu of %zu cells selected (%zu reloaded), %zu failed, in %.1f s; ensemble.h5 and summary.json are "
+                "written by a run over every cell (e.g. --assemble-only once all are finished)\n",
+                chosen.size(), total, reloaded_cells, failed, wall);
+    return kExitOk;
+  }
 
   // Per-size statistics.
   std::vector<SizeCurves> curves;

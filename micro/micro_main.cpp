@@ -13,7 +13,8 @@
 //       one cell's cohesive-crack analysis to separation: DIR/cell.json, DIR/curves.h5, DIR/summary.json
 //   uhpc-micro ensemble --config data/micro_analysis_ensemble.json --out DIR [-j N] [--set key=value]...
 //       sizes x realizations, resumable: per cell as `run`, DIR/ensemble.h5 (uhpc-calibrate's input) and
-//       DIR/summary.json
+//       DIR/summary.json; [--only-size MM] [--only-cell I] analyse a part only (one batch job per cell or
+//       size), --assemble-only writes ensemble.h5 and summary.json from the finished cells
 //
 // --set microstructure.<key>=... overrides data/microstructure.json (Burr law, porosity, matrix);
 // for generate-ensemble, elastic, run and ensemble, --set cell.<key>=... overrides the cell config.
@@ -90,6 +91,24 @@ int main(int argc, char** argv) {
   analyse->add_option("--out", out, "output directory")->required();
   analyse->add_option("-j,--jobs", jobs, "cells analysed at once (default: one per hardware thread)");
   uhpc::add_set_option(*analyse, overrides);
+  // One batch job per cell or per size (docs/cluster.md): run a part, then assemble.
+  uhpc::micro::EnsembleSelection selection;
+  double only_size_mm = 0.0;
+  long long only_cell = 0;
+  CLI::Option* only_size_opt = analyse->add_option(
+      "--only-size", only_size_mm,
+      "analyse only the cells of this size (mm, one of cell_sizes_m); writes no ensemble.h5 or summary.json");
+  CLI::Option* only_cell_opt = analyse->add_option(
+      "--only-cell", only_cell,
+      "analyse only realization I (0-based) of each size, or of --only-size's; writes no ensemble.h5 or summary.json");
+  only_cell_opt->type_name("I");
+  only_size_opt->type_name("MM");
+  analyse
+      ->add_flag("--assemble-only", selection.assemble_only,
+                 "analyse nothing: write ensemble.h5 and summary.json from the finished cells (bad input if any "
+                 "cell is not finished)")
+      ->excludes(only_size_opt)
+      ->excludes(only_cell_opt);
 
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);
@@ -98,9 +117,12 @@ int main(int argc, char** argv) {
     if (elastic->parsed()) return uhpc::micro::run_elastic(config_path, overrides, out);
     if (run->parsed())
       return uhpc::micro::run_cell_command(config_path, overrides, out, uhpc::micro::fracture_analyzer_factory());
-    if (analyse->parsed())
+    if (analyse->parsed()) {
+      if (only_size_opt->count() > 0) selection.only_size_mm = only_size_mm;
+      if (only_cell_opt->count() > 0) selection.only_cell = only_cell;
       return uhpc::micro::run_ensemble_command(config_path, overrides, out, jobs,
-                                               uhpc::micro::fracture_analyzer_factory());
+                                               uhpc::micro::fracture_analyzer_factory(), selection);
+    }
     return uhpc::micro::run_generate_ensemble(config_path, overrides, out);
   });
 }

@@ -32,6 +32,7 @@
 // Newton iterations, snap-back, node/DOF counts, wall time, cell_hash, post_hash, provenance).
 // summary.json is written last: its presence with the same cell_hash marks a finished cell.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,22 @@ int run_cell_command(const std::string& config_path, const std::vector<std::stri
 // `jobs` cells are analysed at once (<= 0: one per hardware thread). Resumable: a cell whose
 // summary.json carries the same cell hash is reloaded, not run again (failed cells are run again
 // when retry_failed is true). Same overrides as `run`.
+//
+// A selection runs part of the ensemble, for one batch job per cell or per size on a cluster
+// (docs/cluster.md): only_size_mm (one of cell_sizes_m, in mm) and only_cell (a realization index,
+// of every size or of the selected one) analyse the selected cells only, resume as above, and write
+// neither ensemble.h5 nor DIR/summary.json; assemble_only analyses nothing: every cell must be
+// finished on disk (failed cells count as failed, whatever retry_failed says), and ensemble.h5 and
+// summary.json are written from them. A size or index outside the ensemble, a selection with
+// assemble_only, or assemble_only with unfinished cells is bad input (exit 2).
+struct EnsembleSelection {
+  std::optional<double> only_size_mm;
+  std::optional<long long> only_cell;
+  bool assemble_only = false;
+};
+
 int run_ensemble_command(const std::string& config_path, const std::vector<std::string>& overrides,
-                         const std::filesystem::path& out, int jobs, const CellAnalyzerFactory& factory);
+                         const std::filesystem::path& out, int jobs, const CellAnalyzerFactory& factory,
+                         const EnsembleSelection& selection = {});
 
 }  // namespace uhpc::micro

@@ -3,13 +3,15 @@
 that does not perforate and the lowest that does, bracketed to a stated width.
 
 usage: ballistic_limit.py --macro UHPC_MACRO --config CASE.json [--sdel SDEL.json] [--set key=value ...]
-                          --low V_LOW --high V_HIGH [--width 10] [--end-time 1e-3] --out DIR
+                          --low V_LOW --high V_HIGH [--width 10] [--end-time 1e-3] [--launch PREFIX] --out DIR
 
 Each run is uhpc-macro at one velocity (rounded to 1 m/s) in DIR/v<velocity>/; a run whose result.json
 exists is read, not rerun, so an interrupted bisection resumes. The bracket's ends are run first: if the
 low end perforates (or the high end does not) the bracket is widened by its own width on that side,
 down to 50 m/s. A run counts as perforating when result.json says "perforated"; embedded, rebounded and
 undecided runs do not perforate (an undecided one is flagged: its end time was too short to decide it).
+--launch puts a launcher before each run, split as a shell would (e.g. --launch "srun -N1 -n1 -c2
+--exclusive" inside a Slurm allocation: docs/cluster.md); empty (default): the runs start here.
 Writes DIR/ballistic_limit.json and DIR/ballistic_limit.md (the bracket, every run in the order it was
 made, with its outcome and residual velocity).
 """
@@ -17,6 +19,7 @@ import argparse
 import json
 import math
 import pathlib
+import shlex
 import subprocess
 import sys
 
@@ -29,7 +32,7 @@ def run(args, velocity, runs):
     out = pathlib.Path(args.out) / f"v{velocity}"
     result = out / "result.json"
     if not result.is_file():
-        cmd = [args.macro, "--config", args.config, "-q", "--out", str(out),
+        cmd = shlex.split(args.launch) + [args.macro, "--config", args.config, "-q", "--out", str(out),
                "--set", f"projectile.velocity_m_s={velocity}", "--set", f"run.end_time_s={args.end_time}"]
         if args.sdel:
             cmd += ["--sdel", args.sdel]
@@ -49,6 +52,7 @@ def run(args, velocity, runs):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--macro", required=True)
+    ap.add_argument("--launch", default="", help="launcher prefix of each run, e.g. \"srun -N1 -n1 -c2 --exclusive\"")
     ap.add_argument("--config", required=True)
     ap.add_argument("--sdel")
     ap.add_argument("--set", action="append")

@@ -3,14 +3,19 @@
 # Idempotent and non-interactive: packages already present are skipped by apt itself.
 #   --with-lammps  also install LAMMPS (Debian's `lammps`, the `lmp` program) and Open MPI's mpirun, for
 #                  `make -C pipelines bench-lammps` only; the build, the tests and CI do not need them.
+#   --with-slurm   also install a single-node Slurm (slurmctld, slurmd, slurm-client, munge) for
+#                  `make -C pipelines test-slurm` (ctest regression.slurm installs it this way when it
+#                  is missing and it runs as root; docs/cluster.md).
 set -euo pipefail
 
 with_lammps=0
+with_slurm=0
 for arg in "$@"; do
   case "$arg" in
     --with-lammps) with_lammps=1 ;;
-    -h|--help) sed -n '2,5p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "install-deps: unknown option '$arg' (known: --with-lammps)" >&2; exit 2 ;;
+    --with-slurm) with_slurm=1 ;;
+    -h|--help) sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "install-deps: unknown option '$arg' (known: --with-lammps, --with-slurm)" >&2; exit 2 ;;
   esac
 done
 
@@ -35,6 +40,9 @@ packages=(
 if [ "$with_lammps" -eq 1 ]; then
   # the speed peer of the macro benchmark: lmp, and mpirun for its 2-process run
   packages+=(lammps openmpi-bin)
+fi
+if [ "$with_slurm" -eq 1 ]; then
+  packages+=(slurmctld slurmd slurm-client munge)
 fi
 
 missing=()

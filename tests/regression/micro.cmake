@@ -42,6 +42,20 @@ uhpc_bad_input_case(NAME micro_cell_beyond_the_mesh_budget
   STDERR "error: data/micro_cell.json: key 'discretization.nominal_spacing_m': a cell of side 1 m at spacing 5e-05 m needs about 4.6e+08 mesh nodes, more than the 2e+06 a cell may have"
   COMMAND ${_micro} generate --config data/micro_cell.json --set cell_size_m=1 --out ${_bad})
 
+# --- uhpc-micro ensemble: a part of the ensemble (--only-size, --only-cell) or its assembly only ---
+uhpc_bad_input_case(NAME micro_ensemble_only_size_not_in_the_ensemble
+  STDERR "error: --only-size 4: not one of the ensemble's cell sizes (3, 4.5, 5, 6.5 mm)"
+  COMMAND ${_micro} ensemble --config data/micro_analysis_ensemble.json --only-size 4 --out ${_bad})
+uhpc_bad_input_case(NAME micro_ensemble_only_cell_out_of_range
+  STDERR "error: --only-cell 25: out of range, the ensemble's realizations are 0 to 24"
+  COMMAND ${_micro} ensemble --config data/micro_analysis_ensemble.json --only-cell 25 --out ${_bad})
+uhpc_bad_input_case(NAME micro_ensemble_only_cell_not_a_number
+  STDERR "error: Could not convert: --only-cell = first"
+  COMMAND ${_micro} ensemble --config data/micro_analysis_ensemble.json --only-cell first --out ${_bad})
+uhpc_bad_input_case(NAME micro_ensemble_assemble_only_with_a_part
+  STDERR "error: --only-cell excludes --assemble-only"
+  COMMAND ${_micro} ensemble --config data/micro_analysis_ensemble.json --assemble-only --only-cell 0 --out ${_bad})
+
 # --- uhpc-micro elastic: RK Galerkin elastic response of the shipped cell ---
 uhpc_regression_case(NAME micro_elastic OUTPUT elastic.json
   COMMAND $<TARGET_FILE:uhpc-micro> -q elastic --config data/micro_elastic.json)

@@ -104,9 +104,11 @@ class MicroRunCommands : public test::ScratchDirTest {
   int run(const fs::path& config, const std::vector<std::string>& sets, const fs::path& out) {
     return run_main("uhpc-micro run", [&] { return run_cell_command(config.string(), sets, out, bar_factory(log_)); });
   }
-  int ensemble(const fs::path& config, const std::vector<std::string>& sets, const fs::path& out, int jobs = 2) {
-    return run_main("uhpc-micro ensemble",
-                    [&] { return run_ensemble_command(config.string(), sets, out, jobs, bar_factory(log_)); });
+  int ensemble(const fs::path& config, const std::vector<std::string>& sets, const fs::path& out, int jobs = 2,
+               const EnsembleSelection& selection = {}) {
+    return run_main("uhpc-micro ensemble", [&] {
+      return run_ensemble_command(config.string(), sets, out, jobs, bar_factory(log_), selection);
+    });
   }
   AnalyzerLog log_;
 };
@@ -368,6 +370,103 @@ TEST_F(MicroRunCommands, EnsembleBadConfigExitsTwo) {
   EXPECT_EQ(testing::internal::GetCapturedStderr(),
             "error: " + config.string() + ": key 'realizations': value 0 is out of range, must be in [1, 10000]\n");
   EXPECT_EQ(log_.calls, 0);
+}
+
+// One batch job per cell or per size (--only-cell, --only-size), then --assemble-only: the same
+// ensemble.h5 as one run over every cell, no cell analysed twice, a failed cell kept by the assembly.
+TEST_F(MicroRunCommands, EnsembleSelectionRunsPartsThenAssemblesTheSameEnsemble) {
+  const fs::path config = ensemble_config({0.003, 0.0065}, 2);
+  const fs::path out = dir_ / "parts";
+  const std::vector<std::string> sets = {"cell.discretization.mesh=false", "analysis.fail_on=[0,1]"};
+  EnsembleSelection cell0;
+  cell0.only_cell = 0;
+  testing::internal::CaptureStderr();
+  ASSERT_EQ(ensemble(config, sets, out, 2, cell0), kExitOk);
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(log_.calls, 2);  // realization 0 of both sizes
+  EXPECT_TRUE(fs::exists(out / "size_3.0mm" / "cell_00" / "summary.json"));
+  EXPECT_TRUE(fs::exists(out / "size_6.5mm" / "cell_00" / "summary.json"));
+  EXPECT_FALSE(fs::exists(out / "size_3.0mm" / "cell_01"));
+  EXPECT_FALSE(fs::exists(out / "ensemble.h5"));  // a part writes no ensemble file
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+
+  // Assembling before every cell is finished: bad input, nothing analysed.
+  EnsembleSelection assemble;
+  assemble.assemble_only = true;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(ensemble(config, sets, out, 2, assemble), kExitBadInput);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            "error: --assemble-only: 2 of 4 cells in " + out.string() +
+                " are not finished with this configuration (size_3.0mm/cell_01, size_6.5mm/cell_01): run them first "
+                "(--only-cell, --only-size, or without --assemble-only)\n");
+  EXPECT_EQ(log_.calls, 2);
+  EXPECT_FALSE(fs::exists(out / "ensemble.h5"));
+
+  EnsembleSelection big;
+  big.only_size_mm = 6.5;
+  testing::internal::CaptureStderr();
+  ASSERT_EQ(ensemble(config, sets, out, 2, big), kExitOk);  // cell_00 reloaded, cell_01 analysed
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(log_.calls, 3);
+  EnsembleSelection failing;
+  failing.only_size_mm = 3.0;
+  failing.only_cell = 1;
+  testing::internal::CaptureStderr();
+  ASSERT_EQ(ensemble(config, sets, out, 2, failing), kExitOk);  // a failed cell is recorded, not an error
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(log_.calls, 4);
+  EXPECT_EQ(read_json(out / "size_3.0mm" / "cell_01" / "summary.json")["status"], "failed");
+  EXPECT_FALSE(fs::exists(out / "ensemble.h5"));
+
+  // The assembly analyses nothing, not even the failed cell that retry_failed would run again.
+  testing::internal::CaptureStderr();
+  ASSERT_EQ(ensemble(config, sets, out, 2, assemble), kExitOk);
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(log_.calls, 4);
+  const nlohmann::json s = read_json(out / "summary.json");
+  EXPECT_EQ(s["cells_reloaded"], 4);
+  EXPECT_EQ(s["cells_failed"], 1);
+
+  // One run over every cell in another directory: the same ensemble, bit for bit.
+  testing::internal::CaptureStderr();
+  ASSERT_EQ(ensemble(config, sets, dir_ / "whole"), kExitOk);
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(log_.calls, 8);
+  const Ensemble parts = read_ensemble(out / "ensemble.h5"), whole = read_ensemble(dir_ / "whole" / "ensemble.h5");
+  EXPECT_EQ(parts.cells, (std::vector<std::int64_t>{1, 2}));
+  EXPECT_EQ(parts.cells, whole.cells);
+  EXPECT_EQ(parts.damage_mean, whole.damage_mean);
+  EXPECT_EQ(parts.damage_std, whole.damage_std);
+  EXPECT_EQ(parts.stress_mean_Pa, whole.stress_mean_Pa);
+  EXPECT_EQ(parts.stress_std_Pa, whole.stress_std_Pa);
+  EXPECT_EQ(parts.nominal_strength_Pa, whole.nominal_strength_Pa);
+  nlohmann::json sizes_parts = s["sizes"], sizes_whole = read_json(dir_ / "whole" / "summary.json")["sizes"];
+  for (nlohmann::json* sizes : {&sizes_parts, &sizes_whole})
+    for (auto& size : *sizes) size.erase("cells_reloaded");  // every cell was reloaded by the assembly only
+  EXPECT_EQ(sizes_parts, sizes_whole);
+}
+
+TEST_F(MicroRunCommands, EnsembleSelectionOutsideTheEnsembleExitsTwo) {
+  const fs::path config = ensemble_config({0.003, 0.0045}, 2);
+  const std::vector<std::string> sets = {"cell.discretization.mesh=false"};
+  const auto message = [&](const EnsembleSelection& sel) {
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(ensemble(config, sets, dir_ / "ens", 2, sel), kExitBadInput);
+    return testing::internal::GetCapturedStderr();
+  };
+  EnsembleSelection size;
+  size.only_size_mm = 4.0;
+  EXPECT_EQ(message(size), "error: --only-size 4: not one of the ensemble's cell sizes (3, 4.5 mm)\n");
+  EnsembleSelection cell;
+  cell.only_cell = 2;
+  EXPECT_EQ(message(cell), "error: --only-cell 2: out of range, the ensemble's realizations are 0 to 1\n");
+  cell.only_cell = -1;
+  EXPECT_EQ(message(cell), "error: --only-cell -1: out of range, the ensemble's realizations are 0 to 1\n");
+  cell.assemble_only = true;
+  cell.only_cell = 0;
+  EXPECT_EQ(message(cell), "error: --assemble-only: cannot be combined with --only-size or --only-cell\n");
+  EXPECT_EQ(log_.calls, 0);
+  EXPECT_FALSE(fs::exists(dir_ / "ens"));
 }
 
 TEST_F(MicroRunCommands, ShippedConfigsAreValid) {
