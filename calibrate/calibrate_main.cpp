@@ -1,5 +1,5 @@
 // uhpc-calibrate: fits the SDEL constants {a, A, nu, chi} to the per-size mean damage curves of a
-// microcell ensemble (all sizes at once, Ceres, PHYSICS.md section 3) and the size effect law to the
+// microcell ensemble (all sizes at once, Ceres, docs/physics.md section 3) and the size effect law to the
 // nominal strengths; writes the micro-to-macro handoff sdel.json, a fit report and figure data.
 //
 //   uhpc-calibrate --ensemble ENSEMBLE.h5 --out sdel.json [--config data/calibrate.json] [--report DIR]

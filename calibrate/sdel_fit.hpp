@@ -1,5 +1,5 @@
 #pragma once
-// The SDEL calibration (PHYSICS.md section 3, paper eq. 27): find s = {a, A, nu, chi} > 0 minimising
+// The SDEL calibration (docs/physics.md section 3, paper eq. 27): find s = {a, A, nu, chi} > 0 minimising
 //   sum_k sum_j w_kj^2 (d_ref^(k)(e_j) - d+(lambda_k, e_j; s))^2
 // over all cell sizes k at once. Pure numerics, no I/O: the driver builds SdelFitData from an
 // ensemble file and writes the result.

@@ -39,7 +39,7 @@ double BurrXII::cdf_untruncated(double x) const {
 double BurrXII::quantile_untruncated(double u) const {
   if (u <= 0.0) return p_.gamma_m;
   if (u >= 1.0) return std::numeric_limits<double>::infinity();
-  // (1-u)^(-1/k) - 1 as expm1(-log1p(-u)/k) (PHYSICS.md): no cancellation for small u.
+  // (1-u)^(-1/k) - 1 as expm1(-log1p(-u)/k) (docs/physics.md): no cancellation for small u.
   const double t = std::expm1(-std::log1p(-u) / p_.k);
   return p_.gamma_m + p_.beta_m * std::pow(t, 1.0 / p_.alpha);
 }

@@ -1,11 +1,11 @@
 #pragma once
-// Burr type XII distribution with location (PHYSICS.md section 1, eq. 31), explicitly truncated.
+// Burr type XII distribution with location (docs/physics.md section 1, eq. 31), explicitly truncated.
 // Pore equivalent sphere diameters (ESD) of the paper's micro-CT fit follow it. For x > gamma,
 // z = (x - gamma) / beta:
 //   pdf f0(x) = (alpha k / beta) z^(alpha-1) (1 + z^alpha)^-(k+1),   CDF F0(x) = 1 - (1 + z^alpha)^-k.
 // The tail is heavy (moments of order >= alpha k diverge), so the law used for sampling is F0
 // conditioned on x <= truncation: F(x) = F0(x) / F0(T). A truncation of +infinity gives the
-// untruncated law (the one SPEC's check values refer to). Pure functions, no I/O.
+// untruncated law (the one docs/specification.md's check values refer to). Pure functions, no I/O.
 #include <cstdint>
 #include <limits>
 #include <random>

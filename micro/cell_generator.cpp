@@ -24,7 +24,7 @@ std::uint64_t splitmix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-// Pore diameters (unsorted) whose total area lands in the porosity band (PHYSICS.md [choice]): a draw
+// Pore diameters (unsorted) whose total area lands in the porosity band (docs/physics.md [choice]): a draw
 // that would overshoot the band, or that cannot fit in the cell with its ligaments, is rejected.
 std::vector<double> draw_diameters(const CellOptions& o, const BurrXII& burr, std::mt19937_64& rng,
                                    GenerationRecord& record) {

@@ -1,5 +1,5 @@
 #pragma once
-// Random porous microcells (PHYSICS.md section 1): pore diameters drawn from the truncated Burr XII
+// Random porous microcells (docs/physics.md section 1): pore diameters drawn from the truncated Burr XII
 // law until the target area porosity is met, placed largest first by random sequential addition,
 // with a minimum ligament between pores and to the cell edges, and crack seeds at the points where
 // uniaxial tension concentrates the hoop stress. Deterministic for a given seed. No I/O.

@@ -12,7 +12,7 @@ struct Vec2 {
   double y = 0.0;
 };
 
-// Direction of the uniaxial tension applied to the cell (PHYSICS.md section 2; x by default).
+// Direction of the uniaxial tension applied to the cell (docs/physics.md section 2; x by default).
 enum class LoadAxis { X, Y };
 
 struct Pore {

@@ -1,5 +1,5 @@
 #pragma once
-// Ensemble statistics of the cells' curves (PHYSICS.md section 2, "Ensemble"): per size, the mean and
+// Ensemble statistics of the cells' curves (docs/physics.md section 2, "Ensemble"): per size, the mean and
 // the spread over the cells of the stress and the damage on the common strain grid, and the nominal
 // strength (the peak of the mean stress curve, the size effect law's sigma_N). Pure functions, no I/O;
 // the result converts to the ensemble.h5 contract (uhpc/ensemble_file.hpp).

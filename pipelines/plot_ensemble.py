@@ -28,7 +28,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def sdel_damage(sdel: dict, size_m: float, strain) -> list:
-    """d+ = 1 / (1 + nu exp(-lambda chi (e - e_i))), e_i = A / sqrt(1 + a lambda) (PHYSICS.md section 3)."""
+    """d+ = 1 / (1 + nu exp(-lambda chi (e - e_i))), e_i = A / sqrt(1 + a lambda) (docs/physics.md section 3)."""
     c = sdel["constants"]
     lam = size_m / sdel["l_mac_m"]
     e_i = c["A"] / math.sqrt(1.0 + c["a"] * lam)

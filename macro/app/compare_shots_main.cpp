@@ -3,16 +3,20 @@
 //
 //   uhpc-compare-shots --results DIR... --out OUTDIR [--experiments data/table5_ballistic_experiments.csv]
 //                      [--paper data/table8_paper_simulations.csv] [--no-paper]
-//                      [--projectile data/projectile.json] [--tolerance-m-s 1]
+//                      [--projectile data/projectile.json] [--tolerance-m-s 1] [--require-experiments]
 //   uhpc-compare-shots --spread --results DIR... --out OUTDIR [--reference NAME]
 //
-// Each DIR is a uhpc-macro output directory (or its result.json). In the first form every shot pairs with
-// the experiment whose impact velocity is within the tolerance; every experiment must be matched exactly
-// once. Writes OUTDIR/comparison.json, comparison.csv and comparison.md (a Markdown table); with --spread,
+// Each DIR is a uhpc-macro output directory (or its result.json). In the first form a shot pairs with the
+// experiment whose impact velocity is within the tolerance and is compared with it; a shot without one is
+// listed with its residual velocity and empty experiment columns, outside the statistics (RMS, ranges).
+// Two shots for one experiment, or a shot within the tolerance of two, are bad input. With
+// --require-experiments every shot must match an experiment and every experiment a shot. Shots are listed
+// by impact velocity. Writes OUTDIR/comparison.json, comparison.csv and comparison.md (a Markdown table); with --spread,
 // OUTDIR/spread.json and spread.md. Bad input: one line naming the file and the reason, exit code 2.
 // The computation is in shot_comparison.hpp.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -68,7 +72,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> results;
   std::string out, experiments_path, paper_path, projectile_path, reference;
   double tolerance = 1.0;
-  bool spread = false, no_paper = false;
+  bool spread = false, no_paper = false, require_experiments = false;
   app.add_option("--results", results, "uhpc-macro output directories (or their result.json)")->required();
   app.add_option("--out", out, "output directory")->required();
   app.add_option("--experiments", experiments_path, "the experiments (Table 5 CSV; default: the shipped data's)");
@@ -79,6 +83,8 @@ int main(int argc, char** argv) {
   app.add_option("--projectile", projectile_path, "projectile (mass_kg, diameter_m, density_kg_m3; default: the shipped data's)");
   app.add_option("--tolerance-m-s", tolerance, "pairing tolerance on the impact velocity [m/s]")
       ->check(CLI::PositiveNumber);
+  app.add_flag("--require-experiments", require_experiments,
+               "every shot must match an experiment and every experiment a shot (exit 2 otherwise)");
   app.add_flag("--spread", spread, "spread of one shot over the runs instead of the comparison with experiments");
   app.add_option("--reference", reference, "--spread: the reference run's directory name (default: the first)");
   return uhpc::run_main(app, [&] {
@@ -130,15 +136,29 @@ int main(int argc, char** argv) {
     }
     const nlohmann::json projectile = read_json(projectile_path);
     in.masses = uhpc::macro::projectile_masses_from_json(projectile, projectile_path);
-    const auto order = uhpc::macro::pair_shots_with_experiments(in.experiments, experiments_path, shots, tolerance);
-    for (std::size_t i : order) in.shots.push_back(shots[i]);
+    if (require_experiments) {
+      (void)uhpc::macro::pair_shots_with_experiments(in.experiments, experiments_path, shots, tolerance);
+    }
+    const auto experiment_of =
+        uhpc::macro::match_shots_to_experiments(in.experiments, experiments_path, shots, tolerance);
+    // Listed by impact velocity (ties: in the order given).
+    std::vector<std::size_t> order(shots.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return shots[a].impact_velocity_m_s < shots[b].impact_velocity_m_s;
+    });
+    for (std::size_t i : order) {
+      in.shots.push_back(shots[i]);
+      in.experiment_of.push_back(experiment_of[i]);
+    }
 
     nlohmann::json c = uhpc::macro::compare_shots(in);
     hashed += projectile.dump() + experiments_path + paper_path;
     c["inputs"] = {{"experiments", experiments_path},
                    {"paper", no_paper ? nlohmann::json(nullptr) : nlohmann::json(paper_path)},
                    {"projectile", projectile_path},
-                   {"pairing_tolerance_m_s", tolerance}};
+                   {"pairing_tolerance_m_s", tolerance},
+                   {"require_experiments", require_experiments}};
     c["provenance"] = uhpc::Provenance::make("uhpc-compare-shots", uhpc::fnv1a64_hex(hashed)).to_json();
     uhpc::write_text_atomic(out_dir / "comparison.json", c.dump(2) + "\n");
     uhpc::write_text_atomic(out_dir / "comparison.csv", uhpc::macro::comparison_csv(c));

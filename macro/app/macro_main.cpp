@@ -1,4 +1,4 @@
-// uhpc-macro: one 3D penetration run (ARCHITECTURE.md section 2).
+// uhpc-macro: one 3D penetration run (docs/architecture.md section 2).
 //
 //   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q] [--restart]
 //

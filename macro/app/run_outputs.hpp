@@ -1,5 +1,5 @@
 #pragma once
-// The files of a uhpc-macro run (ARCHITECTURE.md section 2), kept apart from the time loop:
+// The files of a uhpc-macro run (docs/architecture.md section 2), kept apart from the time loop:
 //   FieldOutput    fields.h5 + fields.xdmf (ParaView) through uhpc::ParticleFieldWriter: position,
 //                  velocity, pressure, equivalent (von Mises) stress, volume, the energy dissipated
 //                  per reference volume (dissipated_J_m3), and the law's own fields (Law::output_fields(),
@@ -7,7 +7,7 @@
 //   History        history.csv, one row per step: time, projectile, contact, energies, momentum
 //   ImpactTracker  the outcome (perforated, embedded, rebounded, undecided) and the residual velocity: the
 //                  sphere's axial velocity at the first step at which it is past the exit face and no
-//                  particle pushes it (PHYSICS.md section 5)
+//                  particle pushes it (docs/physics.md section 5)
 //   BalanceTracker the worst energy and momentum balance errors over the run
 #include <cstdint>
 #include <filesystem>

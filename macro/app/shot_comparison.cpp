@@ -190,6 +190,7 @@ ShotResult shot_from_result_json(const nlohmann::json& j, const std::string& sou
   s.final_velocity_m_s = get_or_nan(j, "final_velocity_m_s");
   s.end_time_s = get_or_nan(j, "end_time_s");
   s.wall_time_s = required_number(j, source, "", "wall_time_s");
+  if (j.contains("outcome") && j.at("outcome").is_string()) s.run_outcome = j.at("outcome").get<std::string>();
   s.particle_count = static_cast<long long>(required_number(j, source, "", "particle_count"));
   s.steps = static_cast<long long>(required_number(j, source, "", "steps"));
   const nlohmann::json& energy = member(j, source, "", "energy");
@@ -202,30 +203,37 @@ ShotResult shot_from_result_json(const nlohmann::json& j, const std::string& sou
   return s;
 }
 
-std::vector<std::size_t> pair_shots_with_experiments(const std::vector<Experiment>& experiments,
-                                                     const std::string& experiments_source,
-                                                     const std::vector<ShotResult>& shots, double tolerance_m_s) {
-  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
-  std::vector<std::size_t> shot_of(experiments.size(), kNone);
+namespace {
+
+// The experiment within `tolerance_m_s` of shot s, kNoExperiment when none; InputError when two are.
+std::size_t experiment_within(const std::vector<Experiment>& experiments, const std::string& experiments_source,
+                              const ShotResult& shot, double tolerance_m_s) {
+  std::size_t match = kNoExperiment;
+  for (std::size_t e = 0; e < experiments.size(); ++e) {
+    if (std::abs(shot.impact_velocity_m_s - experiments[e].impact_velocity_m_s) > tolerance_m_s) continue;
+    if (match != kNoExperiment) {
+      throw_input_error(shot.source, "",
+                        fmt::format("impact velocity {} m/s matches two experiments of {} ({} and {} m/s) within {} m/s",
+                                    shot.impact_velocity_m_s, experiments_source,
+                                    experiments[match].impact_velocity_m_s, experiments[e].impact_velocity_m_s,
+                                    tolerance_m_s));
+    }
+    match = e;
+  }
+  return match;
+}
+
+}  // namespace
+
+std::vector<std::size_t> match_shots_to_experiments(const std::vector<Experiment>& experiments,
+                                                    const std::string& experiments_source,
+                                                    const std::vector<ShotResult>& shots, double tolerance_m_s) {
+  std::vector<std::size_t> experiment_of(shots.size(), kNoExperiment);
+  std::vector<std::size_t> shot_of(experiments.size(), kNoExperiment);
   for (std::size_t s = 0; s < shots.size(); ++s) {
-    std::size_t match = kNone;
-    for (std::size_t e = 0; e < experiments.size(); ++e) {
-      if (std::abs(shots[s].impact_velocity_m_s - experiments[e].impact_velocity_m_s) > tolerance_m_s) continue;
-      if (match != kNone) {
-        throw_input_error(
-            shots[s].source, "",
-            fmt::format("impact velocity {} m/s matches two experiments of {} ({} and {} m/s) within {} m/s",
-                        shots[s].impact_velocity_m_s, experiments_source, experiments[match].impact_velocity_m_s,
-                        experiments[e].impact_velocity_m_s, tolerance_m_s));
-      }
-      match = e;
-    }
-    if (match == kNone) {
-      throw_input_error(shots[s].source, "",
-                        fmt::format("impact velocity {} m/s matches no experiment of {} (within {} m/s)",
-                                    shots[s].impact_velocity_m_s, experiments_source, tolerance_m_s));
-    }
-    if (shot_of[match] != kNone) {
+    const std::size_t match = experiment_within(experiments, experiments_source, shots[s], tolerance_m_s);
+    if (match == kNoExperiment) continue;
+    if (shot_of[match] != kNoExperiment) {
       throw_input_error(
           shots[s].source, "",
           fmt::format("impact velocity {} m/s pairs with the {} m/s experiment that {} already pairs with",
@@ -233,9 +241,28 @@ std::vector<std::size_t> pair_shots_with_experiments(const std::vector<Experimen
                       shots[shot_of[match]].source));
     }
     shot_of[match] = s;
+    experiment_of[s] = match;
   }
+  return experiment_of;
+}
+
+std::vector<std::size_t> pair_shots_with_experiments(const std::vector<Experiment>& experiments,
+                                                     const std::string& experiments_source,
+                                                     const std::vector<ShotResult>& shots, double tolerance_m_s) {
+  // Every shot must match: the first one that does not is named (before any duplicate further on).
+  for (const auto& shot : shots) {
+    if (experiment_within(experiments, experiments_source, shot, tolerance_m_s) == kNoExperiment) {
+      throw_input_error(shot.source, "",
+                        fmt::format("impact velocity {} m/s matches no experiment of {} (within {} m/s)",
+                                    shot.impact_velocity_m_s, experiments_source, tolerance_m_s));
+    }
+  }
+  const std::vector<std::size_t> experiment_of =
+      match_shots_to_experiments(experiments, experiments_source, shots, tolerance_m_s);
+  std::vector<std::size_t> shot_of(experiments.size(), kNoExperiment);
+  for (std::size_t s = 0; s < shots.size(); ++s) shot_of[experiment_of[s]] = s;
   for (std::size_t e = 0; e < experiments.size(); ++e) {
-    if (shot_of[e] == kNone) {
+    if (shot_of[e] == kNoExperiment) {
       throw_input_error(
           experiments_source, "",
           fmt::format("row {} (impact velocity {} m/s) has no shot among the {} result(s) given (within {} m/s)", e + 1,
@@ -246,31 +273,59 @@ std::vector<std::size_t> pair_shots_with_experiments(const std::vector<Experimen
 }
 
 nlohmann::json compare_shots(const ShotComparisonInput& in) {
-  const std::size_t n = in.experiments.size();
-  if (in.shots.size() != n) {
-    throw InputError(fmt::format("{} shot results for {} experiments", in.shots.size(), n));
+  const std::size_t n_exp = in.experiments.size();
+  std::vector<std::size_t> experiment_of = in.experiment_of;
+  if (experiment_of.empty()) {  // positional pairing: shots[i] with experiments[i]
+    if (in.shots.size() != n_exp) {
+      throw InputError(fmt::format("{} shot results for {} experiments", in.shots.size(), n_exp));
+    }
+    for (std::size_t i = 0; i < n_exp; ++i) experiment_of.push_back(i);
+  } else if (experiment_of.size() != in.shots.size()) {
+    throw InputError(fmt::format("{} experiment indices for {} shot results", experiment_of.size(), in.shots.size()));
   }
-  if (!in.paper.empty() && in.paper.size() != n) {
-    throw InputError(
-        fmt::format("{} rows of the paper's simulations for {} experiments (rows pair by order)", in.paper.size(), n));
+  for (std::size_t k : experiment_of) {
+    if (k != kNoExperiment && k >= n_exp) {
+      throw InputError(fmt::format("experiment index {} of {} experiments", k + 1, n_exp));
+    }
+  }
+  if (!in.paper.empty() && in.paper.size() != n_exp) {
+    throw InputError(fmt::format("{} rows of the paper's simulations for {} experiments (rows pair by order)",
+                                 in.paper.size(), n_exp));
   }
   const double m = in.masses.stated_kg, m_paper = in.masses.solid_sphere_kg;
   nlohmann::json shots = nlohmann::json::array(), notes = nlohmann::json::array();
   ErrorStats ours, paper;
-  int perforated = 0, rebounded = 0, not_perforated = 0;
+  int perforated = 0, rebounded = 0, not_perforated = 0, unmatched = 0;
   double wall = 0.0, worst_energy = 0.0, worst_momentum = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Experiment& e = in.experiments[i];
+  std::vector<bool> has_shot(n_exp, false);
+  // Every value of a block null: the columns of a shot without an experiment.
+  auto nulls = [](const nlohmann::json& block) {
+    nlohmann::json j = block;
+    for (auto& v : j) v = nullptr;
+    return j;
+  };
+  // A stand-in experiment for the key layout of the null blocks.
+  const Experiment layout{1.0, 1.0, 1.0, 0.0};
+  for (std::size_t i = 0; i < in.shots.size(); ++i) {
+    const bool matched = experiment_of[i] != kNoExperiment;
+    const Experiment& e = matched ? in.experiments[experiment_of[i]] : layout;
     const ShotResult& s = in.shots[i];
+    if (matched) has_shot[experiment_of[i]] = true;
     const double dv_exp = e.impact_velocity_m_s - e.residual_velocity_m_s;
     const double ke_exp = ke_reduction(m, e.impact_velocity_m_s, e.residual_velocity_m_s);
     const double vr = s.counted_residual_velocity_m_s();
     const double dv = s.impact_velocity_m_s - vr;
     const double ke = ke_reduction(m, s.impact_velocity_m_s, vr);
-    const double dv_err = percent_error(dv_exp, dv), ke_err = percent_error(ke_exp, ke);
-    ours.add_residual(vr - e.residual_velocity_m_s);
-    ErrorStats::extend(ours.vr_min, ours.vr_max, dv_err);
-    ErrorStats::extend(ours.ke_min, ours.ke_max, ke_err);
+    const double dv_err = matched ? percent_error(dv_exp, dv) : kNaN;
+    const double ke_err = matched ? percent_error(ke_exp, ke) : kNaN;
+    const double vr_err = matched ? vr - e.residual_velocity_m_s : kNaN;
+    if (matched) {
+      ours.add_residual(vr_err);
+      ErrorStats::extend(ours.vr_min, ours.vr_max, dv_err);
+      ErrorStats::extend(ours.ke_min, ours.ke_max, ke_err);
+    } else {
+      ++unmatched;
+    }
     (s.outcome == ShotOutcome::Perforated  ? perforated
      : s.outcome == ShotOutcome::Rebounded ? rebounded
                                            : not_perforated)++;
@@ -278,28 +333,31 @@ nlohmann::json compare_shots(const ShotComparisonInput& in) {
     worst_energy = std::max(worst_energy, std::abs(s.energy_balance_error));
     worst_momentum = std::max(worst_momentum, std::abs(s.momentum_balance_error));
 
+    nlohmann::json experiment = {
+        {"thickness_mm", e.thickness_mm},
+        {"target_mass_kg", e.target_mass_kg},
+        {"impact_velocity_m_s", e.impact_velocity_m_s},
+        {"residual_velocity_m_s", e.residual_velocity_m_s},
+        {"velocity_reduction_m_s", dv_exp},
+        {"ke_reduction_J", ke_exp},
+        {"ke_reduction_paper_mass_J", ke_reduction(m_paper, e.impact_velocity_m_s, e.residual_velocity_m_s)}};
     nlohmann::json row = {
-        {"experiment_row", i + 1},
+        {"experiment_row", matched ? nlohmann::json(experiment_of[i] + 1) : nlohmann::json(nullptr)},
+        {"matched", matched},
         {"label", s.label},
         {"result_file", s.source},
-        {"experiment",
-         {{"thickness_mm", e.thickness_mm},
-          {"target_mass_kg", e.target_mass_kg},
-          {"impact_velocity_m_s", e.impact_velocity_m_s},
-          {"residual_velocity_m_s", e.residual_velocity_m_s},
-          {"velocity_reduction_m_s", dv_exp},
-          {"ke_reduction_J", ke_exp},
-          {"ke_reduction_paper_mass_J", ke_reduction(m_paper, e.impact_velocity_m_s, e.residual_velocity_m_s)}}},
+        {"experiment", matched ? experiment : nulls(experiment)},
         {"simulation",
          {{"impact_velocity_m_s", s.impact_velocity_m_s},
           {"outcome", to_string(s.outcome)},
+          {"run_outcome", s.run_outcome.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.run_outcome)},
           {"residual_velocity_m_s", vr},
           {"result_residual_velocity_m_s", s.outcome == ShotOutcome::NotPerforated
                                                ? nlohmann::json(nullptr)
                                                : nlohmann::json(s.raw_residual_velocity_m_s)},
           {"final_velocity_m_s", number(s.final_velocity_m_s)},
           {"end_time_s", number(s.end_time_s)},
-          {"residual_velocity_error_m_s", vr - e.residual_velocity_m_s},
+          {"residual_velocity_error_m_s", number(vr_err)},
           {"velocity_reduction_m_s", dv},
           {"velocity_reduction_error_percent", number(dv_err)},
           {"ke_reduction_J", ke},
@@ -313,14 +371,16 @@ nlohmann::json compare_shots(const ShotComparisonInput& in) {
           {"particle_count", s.particle_count},
           {"steps", s.steps}}}};
     if (!in.paper.empty()) {
-      const PaperSimulation& p = in.paper[i];
+      const PaperSimulation& p = matched ? in.paper[experiment_of[i]] : PaperSimulation{1.0, 0.0, 0, 0, 0, 0};
       const double dv_p = p.impact_velocity_m_s - p.residual_velocity_m_s;
       const double ke_p = ke_reduction(m, p.impact_velocity_m_s, p.residual_velocity_m_s);
       const double dv_p_err = percent_error(dv_exp, dv_p), ke_p_err = percent_error(ke_exp, ke_p);
-      paper.add_residual(p.residual_velocity_m_s - e.residual_velocity_m_s);
-      ErrorStats::extend(paper.vr_min, paper.vr_max, dv_p_err);
-      ErrorStats::extend(paper.ke_min, paper.ke_max, ke_p_err);
-      row["paper"] = {
+      if (matched) {
+        paper.add_residual(p.residual_velocity_m_s - e.residual_velocity_m_s);
+        ErrorStats::extend(paper.vr_min, paper.vr_max, dv_p_err);
+        ErrorStats::extend(paper.ke_min, paper.ke_max, ke_p_err);
+      }
+      const nlohmann::json block = {
           {"impact_velocity_m_s", p.impact_velocity_m_s},
           {"residual_velocity_m_s", p.residual_velocity_m_s},
           {"residual_velocity_error_m_s", p.residual_velocity_m_s - e.residual_velocity_m_s},
@@ -332,6 +392,7 @@ nlohmann::json compare_shots(const ShotComparisonInput& in) {
           {"ke_reduction_printed_J", p.ke_reduction_J},
           {"ke_reduction_error_percent", number(ke_p_err)},
           {"ke_reduction_error_printed_percent", p.ke_reduction_error_percent}};
+      row["paper"] = matched ? block : nulls(block);
     }
     shots.push_back(std::move(row));
 
@@ -364,6 +425,25 @@ nlohmann::json compare_shots(const ShotComparisonInput& in) {
       }
     }
   }
+  nlohmann::json without_shot = nlohmann::json::array();
+  std::string without_text;
+  for (std::size_t e = 0; e < n_exp; ++e) {
+    if (has_shot[e]) continue;
+    without_shot.push_back({{"experiment_row", e + 1},
+                            {"impact_velocity_m_s", in.experiments[e].impact_velocity_m_s},
+                            {"thickness_mm", in.experiments[e].thickness_mm}});
+    without_text += fmt::format("{}row {} ({} m/s)", without_text.empty() ? "" : ", ", e + 1,
+                                in.experiments[e].impact_velocity_m_s);
+  }
+  if (unmatched > 0) {
+    notes.push_back(fmt::format(
+        "{} of the {} shots have no experiment within the pairing tolerance: listed with their residual velocity, "
+        "not in the RMS and the error ranges, which are over the {} shots with an experiment",
+        unmatched, in.shots.size(), ours.n));
+  }
+  if (!without_text.empty()) {
+    notes.push_back("experiments without a shot (not compared): " + without_text);
+  }
   notes.push_back(
       fmt::format("kinetic-energy reductions in J use the stated projectile mass {:.4g} g; the paper's printed joules "
                   "imply the solid "
@@ -371,6 +451,8 @@ nlohmann::json compare_shots(const ShotComparisonInput& in) {
                   m * 1e3, m_paper * 1e3));
 
   nlohmann::json summary_ours = ours.to_json();
+  summary_ours["shots_total"] = in.shots.size();
+  summary_ours["shots_without_experiment"] = unmatched;
   summary_ours["perforated"] = perforated;
   summary_ours["rebounded"] = rebounded;
   summary_ours["not_perforated"] = not_perforated;
@@ -387,10 +469,14 @@ nlohmann::json compare_shots(const ShotComparisonInput& in) {
             {"residual_velocity_error_m_s", "simulation - experiment (positive = sphere too fast)"},
             {"rms_residual_velocity_error_m_s", "sqrt(mean((vr_sim - vr_exp)^2))"},
             {"residual_velocity_m_s", "0 when the sphere did not perforate (rebounded or stopped)"},
-            {"paper_pairing", "Table 8 rows pair with Table 5 rows by order"}}},
+            {"paper_pairing", "Table 8 rows pair with Table 5 rows by order"},
+            {"statistics",
+             "RMS, mean and ranges of the errors over the shots with an experiment only (summary.*.shots); "
+             "outcome counts, wall time and balance errors over every shot (shots_total)"}}},
           {"projectile", {{"mass_kg", m}, {"paper_ke_mass_kg", m_paper}}},
           {"shots", shots},
           {"summary", summary},
+          {"experiments_without_shot", without_shot},
           {"notes", notes}};
 }
 
@@ -438,7 +524,7 @@ std::string comparison_csv(const nlohmann::json& c) {
 std::string comparison_markdown(const nlohmann::json& c) {
   const bool with_paper = c.at("summary").contains("paper");
   std::string md;
-  md += "| v0 exp m/s | t exp mm | vr exp m/s | vr ours m/s |";
+  md += "| run | v0 run m/s | v0 exp m/s | t exp mm | vr exp m/s | vr ours m/s |";
   if (with_paper) md += " vr paper m/s |";
   md += " vr error ours m/s |";
   if (with_paper) md += " vr error paper m/s |";
@@ -447,7 +533,7 @@ std::string comparison_markdown(const nlohmann::json& c) {
   md += " dKE error ours % |";
   if (with_paper) md += " dKE error paper % |";
   md += " energy balance | particles | wall min |\n|";
-  const int cols = 10 + (with_paper ? 4 : 0);
+  const int cols = 12 + (with_paper ? 4 : 0);
   for (int k = 0; k < cols; ++k) md += "---|";
   md += "\n";
   for (const auto& shot : c.at("shots")) {
@@ -460,8 +546,9 @@ std::string comparison_markdown(const nlohmann::json& c) {
       const auto& vf = s.at("final_velocity_m_s");
       vr += vf.is_number() && vf.get<double>() > 1.0 ? " (unfinished)" : " (stopped)";
     }
-    md += fmt::format("| {} | {} | {} | {} |", cell(e.at("impact_velocity_m_s"), 0), cell(e.at("thickness_mm"), 2),
-                      cell(e.at("residual_velocity_m_s"), 0), vr);
+    md += fmt::format("| {} | {} | {} | {} | {} | {} |", shot.at("label").get<std::string>(),
+                      cell(s.at("impact_velocity_m_s"), 0), cell(e.at("impact_velocity_m_s"), 0),
+                      cell(e.at("thickness_mm"), 2), cell(e.at("residual_velocity_m_s"), 0), vr);
     if (with_paper) md += fmt::format(" {} |", cell(shot.at("paper").at("residual_velocity_m_s"), 0));
     md += fmt::format(" {} |", cell(s.at("residual_velocity_error_m_s"), 0));
     if (with_paper) md += fmt::format(" {} |", cell(shot.at("paper").at("residual_velocity_error_m_s"), 0));
@@ -473,6 +560,13 @@ std::string comparison_markdown(const nlohmann::json& c) {
                       cell(s.at("particle_count"), 0), s.at("wall_time_s").get<double>() / 60.0);
   }
   const auto& so = c.at("summary").at("simulation");
+  const int without = so.value("shots_without_experiment", 0);
+  if (without > 0) {
+    md += fmt::format(
+        "\nStatistics over the {} shots with an experiment only ({} of the {} shots have none: their experiment "
+        "and paper columns are empty).",
+        so.at("shots").get<int>(), without, so.value("shots_total", 0));
+  }
   md += fmt::format("\nRMS residual-velocity error over {} shots: ours {} m/s (mean {} m/s)", so.at("shots").get<int>(),
                     cell(so.at("rms_residual_velocity_error_m_s"), 1),
                     cell(so.at("mean_residual_velocity_error_m_s"), 1));
@@ -496,7 +590,7 @@ std::string comparison_markdown(const nlohmann::json& c) {
     md += fmt::format(" (paper {} .. {} %)", cell(sp.at("ke_reduction_error_min_percent"), 1),
                       cell(sp.at("ke_reduction_error_max_percent"), 1));
   }
-  md += fmt::format(". Outcomes: {} perforated, {} rebounded, {} not perforated; total wall time {:.1f} min.\n",
+  md += fmt::format(". Outcomes (every shot): {} perforated, {} rebounded, {} not perforated; total wall time {:.1f} min.\n",
                     so.at("perforated").get<int>(), so.at("rebounded").get<int>(), so.at("not_perforated").get<int>(),
                     so.at("total_wall_time_s").get<double>() / 60.0);
   md +=

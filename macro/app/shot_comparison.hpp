@@ -69,6 +69,7 @@ struct ShotResult {
   double momentum_balance_error = 0.0;
   double momentum_worst_balance_error = 0.0;  // NaN if absent
   double wall_time_s = 0.0;
+  std::string run_outcome;  // result.json's "outcome" (perforated, embedded, rebounded, undecided); "" if absent
   long long particle_count = 0;
   long long steps = 0;
 
@@ -86,10 +87,21 @@ ProjectileMasses projectile_masses_from_json(const nlohmann::json& j, const std:
 // A uhpc-macro result.json. `source` names it in messages, `label` goes into the tables.
 ShotResult shot_from_result_json(const nlohmann::json& j, const std::string& source, const std::string& label);
 
-// For each experiment (in table order), the index of the shot whose impact velocity is within
-// `tolerance_m_s` of the experiment's. Every experiment must be matched by exactly one shot and every
-// shot must match exactly one experiment; otherwise InputError naming the file (experiments_source or
-// the shot's source) and the reason.
+// The value of ShotComparisonInput::experiment_of for a shot that matches no experiment.
+inline constexpr std::size_t kNoExperiment = static_cast<std::size_t>(-1);
+
+// For each shot (in the order given), the index of the experiment whose impact velocity is within
+// `tolerance_m_s` of the shot's, or kNoExperiment when none is. A shot within the tolerance of two
+// experiments, and two shots matching one experiment, are InputErrors naming the shot's file; shots
+// without an experiment and experiments without a shot are not.
+std::vector<std::size_t> match_shots_to_experiments(const std::vector<Experiment>& experiments,
+                                                    const std::string& experiments_source,
+                                                    const std::vector<ShotResult>& shots, double tolerance_m_s);
+
+// The strict pairing (uhpc-compare-shots --require-experiments): for each experiment (in table order),
+// the index of the shot whose impact velocity is within `tolerance_m_s` of the experiment's. Every
+// experiment must be matched by exactly one shot and every shot must match exactly one experiment;
+// otherwise InputError naming the file (experiments_source or the shot's source) and the reason.
 std::vector<std::size_t> pair_shots_with_experiments(const std::vector<Experiment>& experiments,
                                                      const std::string& experiments_source,
                                                      const std::vector<ShotResult>& shots, double tolerance_m_s);
@@ -97,13 +109,18 @@ std::vector<std::size_t> pair_shots_with_experiments(const std::vector<Experimen
 struct ShotComparisonInput {
   std::vector<Experiment> experiments;
   std::vector<PaperSimulation> paper;  // empty, or one row per experiment (same order)
-  std::vector<ShotResult> shots;       // shots[i] pairs with experiments[i]
+  std::vector<ShotResult> shots;
+  // For each shot, the index of its experiment, or kNoExperiment (match_shots_to_experiments). Empty:
+  // shots[i] pairs with experiments[i], as many shots as experiments.
+  std::vector<std::size_t> experiment_of;
   ProjectileMasses masses;
 };
 
-// The full comparison as JSON (units in every key): "shots" (one object per experiment), "summary"
-// (ours and, with Table 8, the paper's: RMS and mean residual-velocity error, error ranges), "notes".
-// InputError when the sizes do not match.
+// The full comparison as JSON (units in every key): "shots" (one object per shot, in the order given;
+// a shot without an experiment has "matched": false, its experiment and paper values and its errors
+// null), "summary" (ours and, with Table 8, the paper's: RMS and mean residual-velocity error, error
+// ranges, over the shots with an experiment only; outcome counts and wall time over every shot),
+// "experiments_without_shot", "notes". InputError when the sizes do not match.
 nlohmann::json compare_shots(const ShotComparisonInput& input);
 
 // The per-shot rows of compare_shots() as CSV ("name [unit]" headers) and as a Markdown table with the

@@ -1,5 +1,5 @@
 #pragma once
-// The AFC concrete model with SDEL tensile damage (PHYSICS.md section 4; equations as implemented and
+// The AFC concrete model with SDEL tensile damage (docs/physics.md section 4; equations as implemented and
 // every option in macro/README.md, "AFC concrete model"). One step at a particle, in this order:
 //   1. hydrostat history: mu = rho/rho0 - 1, mu_max = max(mu_max, mu), the uncut pressure P_u
 //      (afc_hydrostat.hpp, the curve or the unloading line without the tensile cutoff), the crushing

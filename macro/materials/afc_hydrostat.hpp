@@ -1,5 +1,5 @@
 #pragma once
-// The AFC hydrostat (PHYSICS.md section 4): pressure P (> 0 in compression) as a function of the
+// The AFC hydrostat (docs/physics.md section 4): pressure P (> 0 in compression) as a function of the
 // volumetric strain mu = rho/rho0 - 1, its history maximum mu_max and the tensile cutoff T.
 //
 //   loading curve P_L(mu), continuous:
@@ -13,7 +13,7 @@
 //     where loading stopped) and in time (mu_max only grows while the point is on the curve, where line
 //     and curve agree). For an uncrushed point (mu_max <= C7) the line is K_e mu: elasticity.
 //   tension: the same line continued below zero pressure, not below -T, T = Tmax (1 - d+). For an
-//     uncrushed point that is PHYSICS.md's P = K_e mu >= -Tmax (1 - d+); a crushed one reaches zero
+//     uncrushed point that is docs/physics.md's P = K_e mu >= -Tmax (1 - d+); a crushed one reaches zero
 //     pressure at the crushing (plastic volumetric) strain mu_p = mu_max - P_L(mu_max) / K_u and
 //     carries tension only beyond it. P is a function of (mu, mu_max, T): a point that went past the
 //     cutoff carries pressure again as soon as its volume returns (cracks close).

@@ -1,7 +1,7 @@
 #pragma once
-// Constants and options of the AFC concrete model with SDEL tensile damage (PHYSICS.md section 4).
+// Constants and options of the AFC concrete model with SDEL tensile damage (docs/physics.md section 4).
 // AfcParams holds the paper's Table 6 in SI plus the SDEL handoff; AfcOptions holds every gap the paper
-// leaves open ([choice] in PHYSICS.md) as a named field with its default. macro/README.md lists them.
+// leaves open ([choice] in docs/physics.md) as a named field with its default. macro/README.md lists them.
 #include "uhpc/sdel.hpp"
 
 namespace uhpc::macro {
@@ -9,7 +9,7 @@ namespace uhpc::macro {
 // The equivalent tensile strain that drives the SDEL (the handoff's "strain_measure").
 enum class TensileStrainMeasure {
   // sqrt(sum of squared positive principal strains) of eps+ = C^-1 : <sigma_bar>+, the elastic strain
-  // produced by the positive principal effective stresses (default, PHYSICS.md section 3): the
+  // produced by the positive principal effective stresses (default, docs/physics.md section 3): the
   // conjugate of the tensile free energy of eqs. 21-23. sigma_bar is AfcMaterial::State::driver_stress,
   // the stress of the material without tensile limits; C the elastic compliance (K_e, G).
   EffectiveTensile,
@@ -24,7 +24,7 @@ enum class TensileDegradation {
   // sigma = <sigma_e>- + (1 - d+) <sigma_e>+ (principal parts). In uniaxial tension this is the
   // microcells' (1 - d) E e up to AFC's own undamaged strength.
   Split,
-  // The paper's AFC coupling as PHYSICS.md section 4 states it: d+ lowers the tensile cutoff to
+  // The paper's AFC coupling as docs/physics.md section 4 states it: d+ lowers the tensile cutoff to
   // Tmax (1 - d+) and T in eq. 35; the stress tensor itself is not degraded.
   Cutoff,
 };

@@ -1,5 +1,5 @@
 #pragma once
-// The AFC deviatoric strength S, compared with q = sqrt(3 J2) (PHYSICS.md section 4):
+// The AFC deviatoric strength S, compared with q = sqrt(3 J2) (docs/physics.md section 4):
 //   P >= 0:  S = F (C1 - (C2 + (C1 - C2) d-) exp(-An P) + C4 P)                     (eq. 33)
 //   P <  0:  S = F (C1 - C2) (1 - d-) (T + P) / T,   T = Tmax (1 - d+)                (eq. 35)
 //   F = max(1 + C3 ln(edot / edot0), rate_factor_floor)                              (eq. 34)

@@ -58,7 +58,7 @@ enum class Stabilization : std::uint8_t {
 struct SolverOptions {
   rk::Options rk;              // linear basis, cubic B-spline, quasi-linear regularisation (common defaults)
   double support_factor = 2.0; // a_I = support_factor * h_I
-  double cfl = 0.4;            // dt = cfl * min_I critical step (PHYSICS.md: 0.3 - 0.5)
+  double cfl = 0.4;            // dt = cfl * min_I critical step (docs/physics.md: 0.3 - 0.5)
   double fixed_dt_s = 0.0;     // > 0: use this step instead (reversibility studies); must be <= stable
   StrainConfiguration strain_configuration = StrainConfiguration::EndpointAverage;
   BulkViscosity viscosity;     // {0, 0} switches it off

@@ -1,6 +1,6 @@
 #pragma once
 // The projectile: a free rigid sphere (mass, radius, position, velocity) in contact with the particles,
-// frictionless by default (PHYSICS.md section 5), Coulomb friction as an option.
+// frictionless by default (docs/physics.md section 5), Coulomb friction as an option.
 //
 // Each particle I has a contact radius r_I = contact_radius_factor * h_I (default h_I / 2: the
 // particle's half spacing, so the body's surface and not its particle centres meets the sphere, as for

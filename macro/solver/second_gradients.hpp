@@ -1,5 +1,5 @@
 #pragma once
-// Implicit second derivatives of RK shape functions, for the NSNI strain gradients (PHYSICS.md
+// Implicit second derivatives of RK shape functions, for the NSNI strain gradients (docs/physics.md
 // section 5). With the quadratic basis H(y), y = (x - x_J)/h, shifted to x and scaled by h,
 //   Psi^(ij)_J(x) = H^T(y_J) b^(ij) w_J,   M b^(ij) = r^(ij),
 // where r^(ij) holds the second derivatives of the monomials at x: (delta_ai delta_bj + delta_aj

@@ -1,6 +1,6 @@
 #pragma once
 // What can end a run numerically, and the checks made after every step (the robustness contract of
-// ARCHITECTURE.md section 2: the caller writes the last good state and a diagnostic, exit code 1).
+// docs/architecture.md section 2: the caller writes the last good state and a diagnostic, exit code 1).
 //   NonFinite       a position or velocity (of a particle or the sphere) is NaN or infinite
 //   InvertedVolume  a particle volume became non-positive or non-finite (stress_update.hpp)
 //   OutOfDomain     a particle left the domain box (SolverOptions::domain)

@@ -1,5 +1,5 @@
 #pragma once
-// The cohesive-crack analysis of one porous microcell in uniaxial tension (PHYSICS.md section 2),
+// The cohesive-crack analysis of one porous microcell in uniaxial tension (docs/physics.md section 2),
 // from the unloaded cell to full separation: a library function, no I/O.
 //
 //  1. Elastic branch: one linear solve on the uncracked model gives E0_bar and the load at which the

@@ -1,5 +1,5 @@
 #pragma once
-// The cohesive law of the matrix cracks (PHYSICS.md section 2, Table 2), in the crack's local frame
+// The cohesive law of the matrix cracks (docs/physics.md section 2, Table 2), in the crack's local frame
 // (n: normal opening w_n, s: sliding w_t), plain doubles with the consistent tangent. One
 // implementation: the assembly, the energy sums and the unit tests all call these functions.
 //

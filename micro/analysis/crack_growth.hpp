@@ -1,5 +1,5 @@
 #pragma once
-// Crack initiation and growth (PHYSICS.md section 2, [choice]): a tip advances by a fixed increment
+// Crack initiation and growth (docs/physics.md section 2, [choice]): a tip advances by a fixed increment
 // (about one nodal spacing) when the stress averaged over a half disc of radius ~2 spacings ahead of
 // it reaches f_t. Along a planned path (a seed, or a prescribed crack path) the next segment is
 // activated when the averaged normal stress across it reaches f_t; beyond the path the criterion is

@@ -1,5 +1,5 @@
 #pragma once
-// Energy bridging (PHYSICS.md section 2, eq. 15-23): from one cell's load path (CellResponse) to its
+// Energy bridging (docs/physics.md section 2, eq. 15-23): from one cell's load path (CellResponse) to its
 // damage. Pure functions, no I/O.
 //
 // Per state (whole cell, pores included, per unit thickness; A = side^2):

@@ -1,5 +1,5 @@
 #pragma once
-// The RK Galerkin model with Heaviside-enriched cracks (PHYSICS.md section 2):
+// The RK Galerkin model with Heaviside-enriched cracks (docs/physics.md section 2):
 //   u^h(x) = sum_I Psi_I(x) d_I + sum_cracks sum_J Psi_J(x) [H(x) - H(x_J)] R(x) a_J,
 // H the side of the crack (0/1), R the tip ramp (crack_geometry.hpp). Node J of crack c carries a_J
 // when its support is cut by the active part of c and the enriched function is not negligible on

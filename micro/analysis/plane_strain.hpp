@@ -1,5 +1,5 @@
 #pragma once
-// Plane-strain linear elasticity of the matrix (PHYSICS.md section 2, Table 2), Voigt notation
+// Plane-strain linear elasticity of the matrix (docs/physics.md section 2, Table 2), Voigt notation
 // [xx, yy, xy] with engineering shear strain. Small inline helpers: they sit in the assembly loops.
 #include <array>
 

@@ -23,7 +23,7 @@ namespace uhpc::micro {
 enum class IntegrationCorrection : std::uint8_t { None, Vci };
 
 struct RkGalerkinOptions {
-  double support_factor = 2.0;      // [choice] a_I / spacing_I (PHYSICS.md: 1.5 .. 2.0)
+  double support_factor = 2.0;      // [choice] a_I / spacing_I (docs/physics.md: 1.5 .. 2.0)
   KernelType kernel = KernelType::CubicBSpline;
   int triangle_points = 6;          // [choice] Dunavant rule: 1, 3, 6, 7 or 12 points
   int segment_points = 3;           // [choice] Gauss-Legendre points per boundary segment, 1..5

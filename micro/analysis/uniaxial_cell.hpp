@@ -1,5 +1,5 @@
 #pragma once
-// The microcell's uniaxial tension test of PHYSICS.md section 2, elastic (no crack opens): along the
+// The microcell's uniaxial tension test of docs/physics.md section 2, elastic (no crack opens): along the
 // load axis, u = 0 on the near face and u = e_bar l_mic on the far face (Nitsche, that component
 // only; the other component is traction-free there), the two lateral faces and the pores free, and
 // the transverse component fixed at the midpoint of the near face (a point penalty; it only removes

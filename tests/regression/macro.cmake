@@ -59,10 +59,10 @@ uhpc_regression_case(NAME compare_shots_spread OUTPUT spread.json
 set(_cmp_six ${_cmp_dir}/v610 ${_cmp_dir}/v613 ${_cmp_dir}/v689 ${_cmp_dir}/v817 ${_cmp_dir}/v903 ${_cmp_dir}/v992)
 uhpc_bad_input_case(NAME compare_shots_missing_shot
   STDERR "error: data/table5_ballistic_experiments.csv: row 7 (impact velocity 1112 m/s) has no shot among the 6 result(s) given (within 1 m/s)"
-  COMMAND ${_cmp} ${_cmp_tables} --results ${_cmp_six} --out ${UHPC_REGRESSION_OUT}/bad)
+  COMMAND ${_cmp} ${_cmp_tables} --require-experiments --results ${_cmp_six} --out ${UHPC_REGRESSION_OUT}/bad)
 uhpc_bad_input_case(NAME compare_shots_unmatched_velocity
   STDERR "error: tests/regression/compare_shots_bad/v700/result.json: impact velocity 700 m/s matches no experiment of data/table5_ballistic_experiments.csv (within 1 m/s)"
-  COMMAND ${_cmp} ${_cmp_tables} --results ${_cmp_six} tests/regression/compare_shots_bad/v700 --out ${UHPC_REGRESSION_OUT}/bad)
+  COMMAND ${_cmp} ${_cmp_tables} --require-experiments --results ${_cmp_six} tests/regression/compare_shots_bad/v700 --out ${UHPC_REGRESSION_OUT}/bad)
 uhpc_bad_input_case(NAME compare_shots_twice_the_same_shot
   STDERR "error: tests/regression/compare_shots/v610/result.json: impact velocity 610 m/s pairs with the 610 m/s experiment that tests/regression/compare_shots/v610/result.json already pairs with"
   COMMAND ${_cmp} ${_cmp_tables} --results ${_cmp_six} ${_cmp_dir}/v610 --out ${UHPC_REGRESSION_OUT}/bad)
@@ -81,3 +81,16 @@ uhpc_bad_input_case(NAME compare_shots_spread_mixed_shots
 uhpc_bad_input_case(NAME compare_shots_missing_out
   STDERR "error: --out is required"
   COMMAND ${_cmp} --results ${_cmp_dir}/v610)
+
+# Without --require-experiments a shot off every experiment (700 m/s) is listed, outside the statistics,
+# and an experiment without a shot (1112 m/s) is named in the notes.
+uhpc_regression_case(NAME compare_shots_unmatched OUTPUT comparison.json
+  COMMAND ${_cmp} ${_cmp_tables} --results ${_cmp_six} tests/regression/compare_shots_bad/v700)
+
+# The sweep, thickness-study and report targets of pipelines/Makefile on the coarse disc (5 short runs,
+# about half a minute): tables equal to the runs' result.json, the fit inside its bootstrap interval,
+# resumable, the thickness study reusing the sweep's runs, the report's figures and provenance.
+add_test(NAME regression.pipelines_sweep_thickness_report
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/check_sweep_pipeline.py --source ${PROJECT_SOURCE_DIR}
+                 --build ${CMAKE_BINARY_DIR} --out ${UHPC_REGRESSION_OUT}/pipelines_sweep)
+set_tests_properties(regression.pipelines_sweep_thickness_report PROPERTIES LABELS regression TIMEOUT 300)

@@ -1,4 +1,4 @@
-// run_main's exit-code policy (ARCHITECTURE.md section 2: 0 ok, 2 bad input, 1 numerical failure)
+// run_main's exit-code policy (docs/architecture.md section 2: 0 ok, 2 bad input, 1 numerical failure)
 // with exactly one line on stderr, and the --set option.
 #include "uhpc/cli.hpp"
 

@@ -1,4 +1,4 @@
-// The AFC concrete model with SDEL damage at a single material point (PHYSICS.md section 4), with the
+// The AFC concrete model with SDEL damage at a single material point (docs/physics.md section 4), with the
 // shipped constants (data/afc_uhpc.json, data/sdel_paper.json): hydrostat through elastic, crushing and
 // locking and back; strength surfaces and rate factor; d- (eq. 36) and d+ (SDEL) evolution.
 #include <gtest/gtest.h>
@@ -21,7 +21,7 @@ AfcParams paper_params() {
   return load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json");
 }
 
-// The paper's AFC coupling as PHYSICS.md section 4 states it (d+ in the cutoff and eq. 35) with the
+// The paper's AFC coupling as docs/physics.md section 4 states it (d+ in the cutoff and eq. 35) with the
 // Mazars strain of the summed total strain: the model of the earlier releases, kept as options.
 AfcParams cutoff_mazars_params() {
   AfcParams p = paper_params();

@@ -1,4 +1,4 @@
-// The tensile side of the AFC law at a single material point (PHYSICS.md sections 3-4): the effective
+// The tensile side of the AFC law at a single material point (docs/physics.md sections 3-4): the effective
 // tensile strain that drives the SDEL (the conjugate of eqs. 21-23's tensile free energy) and eq. 21's
 // split of the stress handed to the solver.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // uhpc-compare-shots' computation (macro/app/shot_comparison.hpp): the known answer (the paper's own
-// Table 8 residual velocities as the "simulation" against Table 5 give the SPEC's RMS 35.6 m/s and the
+// Table 8 residual velocities as the "simulation" against Table 5 give docs/specification.md's RMS 35.6 m/s and the
 // paper's printed % error columns), the pairing of shots with experiments, rebounds and stopped spheres,
 // result.json validation, the CSV and Markdown tables and the spread of one shot over several runs.
 #include <gtest/gtest.h>
@@ -69,13 +69,13 @@ TEST(ShotComparison, PaperTable8AgainstTable5GivesTheSpecRms) {
   const auto& s = c.at("summary").at("simulation");
   EXPECT_EQ(s.at("shots").get<int>(), 7);
   EXPECT_EQ(s.at("perforated").get<int>(), 7);
-  // SPEC: "RMS error of the paper's residual velocities against the experiments: 35.6 m/s" (35.59).
+  // docs/specification.md: "RMS error of the paper's residual velocities against the experiments: 35.6 m/s" (35.59).
   EXPECT_NEAR(s.at("rms_residual_velocity_error_m_s").get<double>(), 35.59, 0.005);
   EXPECT_NEAR(c.at("summary").at("paper").at("rms_residual_velocity_error_m_s").get<double>(), 35.59, 0.005);
   // Mean of (100-53, 100-72, 160-170, 271-236, 340-330, 413-456, 505-556) = 16/7.
   EXPECT_NEAR(s.at("mean_residual_velocity_error_m_s").get<double>(), 16.0 / 7.0, 1e-9);
   EXPECT_NEAR(s.at("max_abs_residual_velocity_error_m_s").get<double>(), 51.0, 1e-9);
-  // SPEC: velocity-reduction errors within -9 .. +8 %, kinetic-energy reduction errors within -5 .. +2 %.
+  // docs/specification.md: velocity-reduction errors within -9 .. +8 %, kinetic-energy reduction errors within -5 .. +2 %.
   EXPECT_EQ(std::lround(s.at("velocity_reduction_error_min_percent").get<double>()), -9);
   EXPECT_EQ(std::lround(s.at("velocity_reduction_error_max_percent").get<double>()), 8);
   EXPECT_EQ(std::lround(s.at("ke_reduction_error_min_percent").get<double>()), -5);
@@ -152,6 +152,83 @@ TEST(ShotComparison, PairingErrorsNameTheFileAndReason) {
   EXPECT_EQ(
       error_of<uhpc::InputError>([&] { pair_shots_with_experiments(e, "t5.csv", seven({611.5}), 5.0); }),
       "v0/result.json: impact velocity 611.5 m/s matches two experiments of t5.csv (610 and 613 m/s) within 5 m/s");
+}
+
+TEST(ShotComparison, MatchesShotsWithoutRequiringEveryExperiment) {
+  const auto e = table5();
+  std::vector<ShotResult> shots;
+  for (double v : {700.0, 610.4, 1200.0, 689.0}) shots.push_back(shot(v, true, false, 100.0, std::to_string(v)));
+  const auto of = match_shots_to_experiments(e, "t5.csv", shots, 1.0);
+  const std::vector<std::size_t> expected = {kNoExperiment, 0, kNoExperiment, 2};
+  EXPECT_EQ(of, expected);
+  // Two shots for one experiment, or a shot within the tolerance of two, stay bad input.
+  shots.push_back(shot(610.0, true, false, 90.0, "again"));
+  EXPECT_EQ(error_of<uhpc::InputError>([&] { match_shots_to_experiments(e, "t5.csv", shots, 1.0); }),
+            "again/result.json: impact velocity 610 m/s pairs with the 610 m/s experiment that "
+            "610.400000/result.json already pairs with");
+  EXPECT_EQ(error_of<uhpc::InputError>([&] { match_shots_to_experiments(e, "t5.csv", {shot(611.5, true, false, 1.0, "w")}, 5.0); }),
+            "w/result.json: impact velocity 611.5 m/s matches two experiments of t5.csv (610 and 613 m/s) within 5 m/s");
+}
+
+TEST(ShotComparison, ShotsWithoutAnExperimentAreListedOutsideTheStatistics) {
+  ShotComparisonInput in;
+  in.experiments = table5();
+  in.paper = table8();
+  in.masses = masses();
+  // 600 m/s (no experiment), 610 (row 1, 30 m/s too fast), 700 (none, rebounded), 817 (row 4, exact).
+  in.shots = {shot(600, true, false, 20.0, "v600"), shot(610, true, false, 83.0, "v610"),
+              shot(700, false, true, -5.0, "v700"), shot(817, true, false, 236.0, "v817")};
+  in.experiment_of = {kNoExperiment, 0, kNoExperiment, 3};
+  const nlohmann::json c = compare_shots(in);
+  ASSERT_EQ(c.at("shots").size(), 4u);
+  const auto& u = c.at("shots")[0];
+  EXPECT_FALSE(u.at("matched").get<bool>());
+  EXPECT_TRUE(u.at("experiment_row").is_null());
+  EXPECT_TRUE(u.at("experiment").at("residual_velocity_m_s").is_null());
+  EXPECT_TRUE(u.at("paper").at("residual_velocity_m_s").is_null());
+  EXPECT_TRUE(u.at("simulation").at("residual_velocity_error_m_s").is_null());
+  EXPECT_TRUE(u.at("simulation").at("velocity_reduction_error_percent").is_null());
+  EXPECT_EQ(u.at("simulation").at("residual_velocity_m_s").get<double>(), 20.0);
+  EXPECT_EQ(u.at("simulation").at("velocity_reduction_m_s").get<double>(), 580.0);
+  EXPECT_EQ(c.at("shots")[2].at("simulation").at("residual_velocity_m_s").get<double>(), 0.0);  // rebound
+  EXPECT_EQ(c.at("shots")[3].at("experiment_row").get<int>(), 4);
+  EXPECT_TRUE(c.at("shots")[3].at("matched").get<bool>());
+  // Statistics over the two matched shots only: errors +30 and 0 m/s.
+  const auto& s = c.at("summary").at("simulation");
+  EXPECT_EQ(s.at("shots").get<int>(), 2);
+  EXPECT_EQ(s.at("shots_total").get<int>(), 4);
+  EXPECT_EQ(s.at("shots_without_experiment").get<int>(), 2);
+  EXPECT_NEAR(s.at("rms_residual_velocity_error_m_s").get<double>(), std::sqrt(30.0 * 30.0 / 2.0), 1e-12);
+  EXPECT_NEAR(s.at("mean_residual_velocity_error_m_s").get<double>(), 15.0, 1e-12);
+  EXPECT_EQ(s.at("perforated").get<int>(), 3);  // outcome counts over every shot
+  EXPECT_EQ(s.at("rebounded").get<int>(), 1);
+  // The paper's statistics over the same experiments (rows 1 and 4: 100 - 53, 271 - 236).
+  EXPECT_NEAR(c.at("summary").at("paper").at("rms_residual_velocity_error_m_s").get<double>(),
+              std::sqrt((47.0 * 47.0 + 35.0 * 35.0) / 2.0), 1e-12);
+  ASSERT_EQ(c.at("experiments_without_shot").size(), 5u);
+  EXPECT_EQ(c.at("experiments_without_shot")[0].at("experiment_row").get<int>(), 2);
+  const std::string notes = c.at("notes").dump();
+  EXPECT_NE(notes.find("2 of the 4 shots have no experiment"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("experiments without a shot (not compared): row 2 (613 m/s), row 3 (689 m/s)"),
+            std::string::npos)
+      << notes;
+  // The tables: one CSV row per shot with empty experiment cells; the Markdown says what the RMS covers.
+  const uhpc::CsvTable t = uhpc::CsvTable::parse(comparison_csv(c), "comparison.csv");
+  EXPECT_EQ(t.rows(), 4u);
+  EXPECT_EQ(t.column("simulation_residual_velocity")[0], 20.0);
+  EXPECT_EQ(t.text_column("experiment_residual_velocity")[0], "");
+  EXPECT_EQ(t.text_column("experiment_residual_velocity")[3], "236");
+  const std::string md = comparison_markdown(c);
+  EXPECT_NE(md.find("| v600 | 600 |  |  |  | 20 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("Statistics over the 2 shots with an experiment only (2 of the 4 shots have none"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("RMS residual-velocity error over 2 shots: ours 21.2 m/s"), std::string::npos) << md;
+  // Indices that do not fit are an error, not a crash.
+  in.experiment_of = {kNoExperiment, 0, 9, 3};
+  EXPECT_EQ(error_of<uhpc::InputError>([&] { compare_shots(in); }), "experiment index 10 of 7 experiments");
+  in.experiment_of = {0};
+  EXPECT_EQ(error_of<uhpc::InputError>([&] { compare_shots(in); }), "1 experiment indices for 4 shot results");
 }
 
 TEST(ShotComparison, ReboundAndStoppedSphereCountAsResidualVelocityZero) {

@@ -1,4 +1,4 @@
-// Burr XII sampler (micro/burr.hpp) against its analytic law. SPEC's check values (mean 184.3 um,
+// Burr XII sampler (micro/burr.hpp) against its analytic law. docs/specification.md's check values (mean 184.3 um,
 // median 148.1 um) are statistics of the UNtruncated law (data/README.md), so the draws are compared
 // with them with truncation off; the truncated sampler (the one the cells use, at 1.3 mm) is compared
 // with the truncated law's own statistics, computed here by an independent quadrature of x f(x).
@@ -96,8 +96,8 @@ TEST(microBurr, UntruncatedDrawsPassKolmogorovSmirnovAndMatchSpecMeanMedian) {
   RecordProperty("ks_statistic", std::to_string(d));
   RecordProperty("ks_p_value", std::to_string(p));
   EXPECT_GT(p, 0.01) << "D = " << d;
-  EXPECT_NEAR(mean_of(x) * 1e6 / 184.3, 1.0, 0.01);    // SPEC, untruncated
-  EXPECT_NEAR(median_of(x) * 1e6 / 148.1, 1.0, 0.01);  // SPEC, untruncated
+  EXPECT_NEAR(mean_of(x) * 1e6 / 184.3, 1.0, 0.01);    // docs/specification.md, untruncated
+  EXPECT_NEAR(median_of(x) * 1e6 / 148.1, 1.0, 0.01);  // docs/specification.md, untruncated
   std::printf("untruncated: KS D = %.5f, p = %.3f, mean %.2f um, median %.2f um\n", d, p, mean_of(x) * 1e6,
               median_of(x) * 1e6);
 }

@@ -1,6 +1,6 @@
 // Cell generator (micro/cell_generator.hpp): every generated cell meets the porosity band, keeps the
 // minimum ligament between pores and to the edges, places pores largest first, roots the crack seeds
-// where PHYSICS.md says, and is a pure function of its seed. Checked with plain arithmetic,
+// where docs/physics.md says, and is a pure function of its seed. Checked with plain arithmetic,
 // independently of the CGAL predicates the generator uses.
 #include <algorithm>
 #include <cmath>
@@ -142,7 +142,7 @@ TEST(microCellGenerator, PorosityBudgetRejectsOvershootingDrawsOnly) {
 }
 
 TEST(microCellGenerator, SmallCellCapsTheLargestPore) {
-  // PHYSICS.md: a 3.0 mm cell at 3.4 % holds at most a 0.62 mm pore (0.629 mm with the 0.05 % band).
+  // docs/physics.md: a 3.0 mm cell at 3.4 % holds at most a 0.62 mm pore (0.629 mm with the 0.05 % band).
   const CellOptions o = paper_options(0.003);
   EXPECT_NEAR(2.0 * std::sqrt(o.porosity.target * o.side_m * o.side_m / M_PI), 0.624e-3, 0.001e-3);
   const double cap = 2.0 * std::sqrt((o.porosity.target + o.porosity.tolerance) * o.side_m * o.side_m / M_PI);

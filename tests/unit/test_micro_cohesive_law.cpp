@@ -25,7 +25,7 @@ CohesiveLaw table2(CohesiveMode mode = CohesiveMode::ModeI) {
 TEST(microCohesiveLaw, EnvelopeMatchesTable2) {
   const CohesiveLaw law = table2();
   EXPECT_NEAR(law.critical_opening(), 2.0 * 35.0 / 22.7e6, 1e-20);
-  EXPECT_NEAR(law.critical_opening(), 3.084e-6, 1e-9);  // SPEC.md: w_c = 3.08 um
+  EXPECT_NEAR(law.critical_opening(), 3.084e-6, 1e-9);  // docs/specification.md: w_c = 3.08 um
   const double wc = law.critical_opening(), w0 = law.activation_opening();
   EXPECT_DOUBLE_EQ(law.envelope(w0), 22.7e6);  // peak exactly f_t
   EXPECT_DOUBLE_EQ(law.envelope(wc), 0.0);

@@ -47,7 +47,7 @@ TEST(Sdel, Table4ValuesAgainstDirectFormula) {
 }
 
 TEST(Sdel, SpecCheckStrainsForHalfDamage) {
-  // SPEC: with Table 4, d+ = 0.5 at 3.58e-4 (l_mic = 3.0 mm) and 2.71e-4 (6.5 mm), to the printed
+  // docs/specification.md: with Table 4, d+ = 0.5 at 3.58e-4 (l_mic = 3.0 mm) and 2.71e-4 (6.5 mm), to the printed
   // digits (half a unit in the last printed place).
   const double e3 = uhpc::sdel_strain_at_damage(uhpc::sdel_lambda(0.0030, kLmac), 0.5, kTable4);
   const double e65 = uhpc::sdel_strain_at_damage(uhpc::sdel_lambda(0.0065, kLmac), 0.5, kTable4);

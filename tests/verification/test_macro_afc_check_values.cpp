@@ -1,4 +1,4 @@
-// SPEC.md's AFC check values (Table 6) reproduced by the law itself at a single material point, built
+// docs/specification.md's AFC check values (Table 6) reproduced by the law itself at a single material point, built
 // from the shipped files: P(C7) = 172.37 MPa, P(C9) = 807.7 MPa, dilatational wave speed at rest
 // 4274 m/s, E = 43 300 MPa, unconfined compressive strength 193.6 MPa (eq. 33, reference rate) and
 // uniaxial tensile strength 15.9 MPa (eq. 35, d+ = 0). Printed figures are met to their last digit.
@@ -56,7 +56,7 @@ TEST(AfcCheckValues, UnconfinedCompressionAtTheReferenceRate) {
 
 TEST(AfcCheckValues, UniaxialTensionWithoutTensileDamage) {
   AfcParams p = paper_params();
-  p.options.tensile_damage = TensileDamage::Off;  // eq. 35 at d+ = 0, the SPEC's figure
+  p.options.tensile_damage = TensileDamage::Off;  // eq. 35 at d+ = 0, docs/specification.md's figure
   PointDriver<AfcMaterial> pt(AfcMaterial(p), 0.003);
   const double de = 1e-7, dt = de / p.reference_strain_rate_1_s;
   double peak = 0.0;

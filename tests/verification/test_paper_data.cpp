@@ -1,4 +1,4 @@
-// The paper's data files (data/) against the SPEC check values. Every number checked here is computed
+// The paper's data files (data/) against the check values of docs/specification.md. Every number checked here is computed
 // from the files, never typed again; the printed value is only the expectation. "Within the printed
 // digits" means within half a unit of the last printed place.
 //
@@ -138,7 +138,7 @@ TEST(PaperData, Table1AgreesWithMicrostructureJson) {
 }
 
 TEST(PaperData, BurrCheckValuesReferToTheUntruncatedDistribution) {
-  // SPEC: mean 184.3 um, median 148.1 um, 90th percentile 316.0 um, P(ESD < 600 um) = 0.9865.
+  // docs/specification.md: mean 184.3 um, median 148.1 um, 90th percentile 316.0 um, P(ESD < 600 um) = 0.9865.
   // All four are statistics of the UNTRUNCATED Burr distribution: truncated at the fit's upper
   // bound (1.3 mm) the mean is 183.3 um, the median 148.0 um, the 90th percentile 315.3 um and
   // P(< 600 um) = 0.9872, none of which matches the printed digits.
@@ -163,7 +163,7 @@ TEST(PaperData, BurrCheckValuesReferToTheUntruncatedDistribution) {
 }
 
 TEST(PaperData, ExpectedPoreCountsPerCellUseTheTruncatedDistribution) {
-  // PHYSICS.md section 1: about 8, 19, 23, 39 pores per cell at 3.4 % area porosity. These follow
+  // docs/physics.md section 1: about 8, 19, 23, 39 pores per cell at 3.4 % area porosity. These follow
   // from E[pi D^2 / 4] of the distribution truncated at 1.3 mm (8.3, 18.7, 23.1, 39.0); untruncated
   // they would be 8.0, 17.9, 22.1, 37.3.
   const nlohmann::json m = load_json("microstructure.json");
@@ -213,7 +213,7 @@ TEST(PaperData, Table4AgreesWithSdelPaperJsonAndGivesTheCheckStrains) {
   EXPECT_EQ(h.cell_sizes_m, load_json("microstructure.json").at("cell_sizes_m").get<std::vector<double>>());
   EXPECT_EQ(h.l_mac_m, load_json("microstructure.json").at("l_mac_m").get<double>());
 
-  // SPEC: d+ = 0.5 at 3.58e-4 (l_mic = 3.0 mm) and 2.71e-4 (6.5 mm).
+  // docs/specification.md: d+ = 0.5 at 3.58e-4 (l_mic = 3.0 mm) and 2.71e-4 (6.5 mm).
   const double e3 = uhpc::sdel_strain_at_damage(uhpc::sdel_lambda(h.cell_sizes_m.front(), h.l_mac_m), 0.5, h.constants);
   const double e65 = uhpc::sdel_strain_at_damage(uhpc::sdel_lambda(h.cell_sizes_m.back(), h.l_mac_m), 0.5, h.constants);
   expect_printed(e3 * 1e4, 3.58, 2, "strain at d = 0.5, 3.0 mm [1e-4]");
@@ -339,7 +339,7 @@ TEST(PaperData, KineticEnergyReductionsUseA842GramSphereNotTheStated9071Grams) {
 }
 
 TEST(PaperData, Table8RmsResidualVelocityError) {
-  // SPEC: RMS of (paper residual - experiment residual) over the 7 rows = 35.6 m/s; the rows pair
+  // docs/specification.md: RMS of (paper residual - experiment residual) over the 7 rows = 35.6 m/s; the rows pair
   // with Table 7 by order (the paper's "analogous experiment").
   const Shots s = shots("table8_paper_simulations.csv");
   const Shots e = shots("table7_experimental_reductions.csv");
@@ -364,7 +364,7 @@ TEST(PaperData, Table8PercentErrorsAreExperimentMinusSimulation) {
     EXPECT_EQ(std::round(100.0 * (e.dv[i] - s.dv[i]) / e.dv[i]), dv_err[i]) << "row " << i + 1;
     EXPECT_EQ(std::round(100.0 * (e.ke[i] - s.ke[i]) / e.ke[i]), ke_err[i]) << "row " << i + 1;
   }
-  // SPEC: velocity-reduction errors within -9 % .. +8 %, KE-reduction errors within -5 % .. +2 %.
+  // docs/specification.md: velocity-reduction errors within -9 % .. +8 %, KE-reduction errors within -5 % .. +2 %.
   EXPECT_EQ(*std::min_element(dv_err.begin(), dv_err.end()), -9.0);
   EXPECT_EQ(*std::max_element(dv_err.begin(), dv_err.end()), 8.0);
   EXPECT_EQ(*std::min_element(ke_err.begin(), ke_err.end()), -5.0);

@@ -1,5 +1,5 @@
 // The energy an SDEL dissipates in uniaxial tension: numerical integration against the closed form
-// (a Fermi-Dirac integral), and the crack-band trend PHYSICS.md section 3 relies on: the energy per
+// (a Fermi-Dirac integral), and the crack-band trend docs/physics.md section 3 relies on: the energy per
 // unit volume falls as the length scale grows.
 #include <gtest/gtest.h>
 

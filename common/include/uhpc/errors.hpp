@@ -1,5 +1,5 @@
 #pragma once
-// The two failure kinds every program distinguishes (ARCHITECTURE.md section 2):
+// The two failure kinds every program distinguishes (docs/architecture.md section 2):
 // bad input -> exit code 2, numerical failure -> exit code 1.
 #include <stdexcept>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Reproducing kernel (RK) shape functions in 2D and 3D (PHYSICS.md section 2, eqs. 28-30):
+// Reproducing kernel (RK) shape functions in 2D and 3D (docs/physics.md section 2, eqs. 28-30):
 //
 //   Psi_I(x) = H^T((x - x_I)/h) b(x) phi_a(x - x_I),   M(x) b(x) = H(0),
 //   M(x) = sum_I H((x - x_I)/h) H^T((x - x_I)/h) phi_a(x - x_I),

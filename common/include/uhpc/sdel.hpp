@@ -1,5 +1,5 @@
 #pragma once
-// Scaled damage evolution law (SDEL), PHYSICS.md section 3 (paper eq. 24-26 and 37):
+// Scaled damage evolution law (SDEL), docs/physics.md section 3 (paper eq. 24-26 and 37):
 //
 //   d+(lambda, e) = 1 / (1 + nu * exp(-lambda * chi * (e - e_i)))
 //   e_i           = A / sqrt(1 + a * lambda)

@@ -1,5 +1,5 @@
 #pragma once
-// sdel.json, the micro-to-macro handoff (ARCHITECTURE.md section 2): the four SDEL constants, l_mac,
+// sdel.json, the micro-to-macro handoff (docs/architecture.md section 2): the four SDEL constants, l_mac,
 // the strain measure the law is driven by, the cell sizes it was fitted on, fit quality and origin.
 //
 //   {

@@ -1,0 +1,135 @@
+#!/usr/bin/env python3
+"""The sweep, thickness-study and report targets of pipelines/Makefile end to end on the coarse disc.
+
+usage: check_sweep_pipeline.py --source SRC --build BUILD --out DIR
+
+Runs `make -C SRC/pipelines sweep thickness-study report` with 3 velocities (689 and 1112 m/s match Table
+5 shots, 900 m/s matches none) at 31.75 mm and a thickness study of 2 thicknesses x 2 velocities that
+reuses the sweep's runs at 31.75 mm, on data/macro_disc_afc_coarse.json with a 0.2 ms end time (5 runs,
+a few seconds each). Checks: the table's residual velocities are those of each run's result.json; the
+comparison keeps the unmatched run and takes its statistics over the matched ones; the fit is physical
+and inside its bootstrap interval; a second `make sweep` runs nothing; the thickness study reuses the
+sweep's runs; the report page links only figures that exist and shows each run's provenance.
+"""
+import argparse
+import csv
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+
+FAILURES = []
+
+
+def check(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond:
+        FAILURES.append(what)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--source", required=True)
+    ap.add_argument("--build", required=True)
+    ap.add_argument("--out", required=True)
+    args = ap.parse_args()
+    src, out = pathlib.Path(args.source), pathlib.Path(args.out)
+    shutil.rmtree(out, ignore_errors=True)
+    make = ["make", "-C", str(src / "pipelines"), "--no-print-directory", "-o", "macro-tools",  # built by ctest's build
+            f"BUILD={args.build}", f"OUT={out}", f"SHOT_CASE={src}/data/macro_disc_afc_coarse.json",
+            "SHOT_SET=--set run.end_time_s=2e-4", "VELOCITIES=689 900 1112", "THICKNESS=0.03175",
+            "THICKNESSES=0.025 0.03175", "TS_VELOCITIES=689 1112", "BOOTSTRAP=200", "JOBS=2"]
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    done = subprocess.run(make + ["-j2", "sweep", "thickness-study"], env=env)
+    check(done.returncode == 0, "make sweep thickness-study exits 0")
+    if done.returncode:
+        sys.exit(1)
+    done = subprocess.run(make + ["report"], env=env)
+    check(done.returncode == 0, "make report exits 0")
+
+    sweep = out / "sweep" / "t0.03175"
+    for name in ("sweep.csv", "sweep.md", "sweep.json", "sweep.png", "comparison.json"):
+        check((sweep / name).is_file(), f"sweep/t0.03175/{name} exists")
+    check((sweep / "sweep.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", "sweep.png is a PNG")
+
+    # The table against each run's own result.json.
+    with open(sweep / "sweep.csv") as f:
+        rows = list(csv.DictReader(f))
+    check([float(r["impact_velocity_m_s"]) for r in rows] == [689.0, 900.0, 1112.0], "one row per velocity, in order")
+    for r in rows:
+        res = json.loads((sweep / f"v{float(r['impact_velocity_m_s']):g}" / "result.json").read_text())
+        expected = res["residual_velocity_m_s"] if res["perforated"] else 0.0
+        got = float(r["residual_velocity_m_s"]) if r["residual_velocity_m_s"] else None
+        check(res["outcome"] != "undecided" and got is not None and abs(got - expected) < 1e-9,
+              f"v{r['impact_velocity_m_s']}: table residual {got} = result.json's {expected} ({res['outcome']})")
+        check(r["outcome"] == res["outcome"], f"v{r['impact_velocity_m_s']}: outcome {r['outcome']}")
+
+    # uhpc-compare-shots kept the run without an experiment, statistics over the two matched ones.
+    c = json.loads((sweep / "comparison.json").read_text())
+    s = c["summary"]["simulation"]
+    check(s["shots_total"] == 3 and s["shots"] == 2 and s["shots_without_experiment"] == 1,
+          f"comparison: 3 shots, 2 matched ({s['shots_total']}, {s['shots']}, {s['shots_without_experiment']})")
+    unmatched = [x for x in c["shots"] if not x["matched"]]
+    check(len(unmatched) == 1 and unmatched[0]["simulation"]["impact_velocity_m_s"] == 900
+          and unmatched[0]["experiment"]["residual_velocity_m_s"] is None, "the 900 m/s run is listed, unmatched")
+    errs = [x["simulation"]["residual_velocity_error_m_s"] for x in c["shots"] if x["matched"]]
+    rms = (sum(e * e for e in errs) / len(errs)) ** 0.5
+    check(abs(rms - s["rms_residual_velocity_error_m_s"]) < 1e-9, f"RMS {rms:.3f} m/s over the matched runs")
+
+    # The fits: physical constants, inside their bootstrap intervals.
+    fits = json.loads((sweep / "sweep.json").read_text())["fits"]
+    for name in ("sweep", "experiments"):
+        f = fits[name]
+        vmin = min(float(r["impact_velocity_m_s"]) for r in rows if float(r["residual_velocity_m_s"] or 0) > 0) \
+            if name == "sweep" else 610.0
+        check(0.0 < f["a"] <= 1.0 and 0.0 <= f["v_bl_m_s"] < vmin and 0.3 <= f["p"] <= 6.1,
+              f"{name} fit physical: a {f['a']:.3f}, v_bl {f['v_bl_m_s']:.1f} < {vmin:g}, p {f['p']:.2f}")
+        b = f["bootstrap"]
+        check(b["resamples"] == 200 and b["seed"] == 20261205, f"{name}: 200 resamples, seed 20261205")
+        for k in ("a", "v_bl_m_s", "p"):
+            lo, hi = b["ci"][k]
+            check(lo <= f[k] + 1e-9 and f[k] - 1e-9 <= hi, f"{name}: {k} {f[k]:.4g} in [{lo:.4g}, {hi:.4g}]")
+    exp = fits["experiments"]
+    check(exp["points"] == 7 and exp["rms_m_s"] < 30.0, f"the experiments' fit: 7 points, RMS {exp['rms_m_s']:.1f}")
+
+    # Resumable: a second make sweep runs no shot.
+    dry = subprocess.run(make + ["-n", "sweep"], env=env, capture_output=True, text=True)
+    check(dry.returncode == 0 and "uhpc-macro" not in dry.stdout, "a second make sweep runs no shot")
+
+    # The thickness study: 2 thicknesses, the 31.75 mm runs are the sweep's.
+    t = json.loads((out / "thickness" / "thickness.json").read_text())
+    ts = t["thicknesses"]
+    check([x["thickness_m"] for x in ts] == [0.025, 0.03175], "thickness study: 0.025 and 0.03175 m")
+    check((out / "thickness" / "thickness.png").is_file(), "thickness.png exists")
+    for x in ts:
+        for r in x["runs"]:
+            res = json.loads((pathlib.Path(r["run"]) / "result.json").read_text())
+            check(abs(res["inputs"]["target"]["thickness_m"] - x["thickness_m"]) < 1e-12
+                  and r["residual_velocity_m_s"] == (res["residual_velocity_m_s"] if res["perforated"] else 0.0),
+                  f"t {x['thickness_m']} v {r['impact_velocity_m_s']:g}: residual {r['residual_velocity_m_s']} "
+                  "from its result.json")
+    check(all(str(sweep) in r["run"] for r in ts[1]["runs"]), "the 31.75 mm runs are the sweep's")
+    thin = {r["impact_velocity_m_s"]: r["residual_velocity_m_s"] for r in ts[0]["runs"]}
+    thick = {r["impact_velocity_m_s"]: r["residual_velocity_m_s"] for r in ts[1]["runs"]}
+    check(all(thin[v] >= thick[v] for v in thin), f"a thinner target leaves the sphere faster: {thin} vs {thick}")
+
+    # The report page.
+    page = (out / "report" / "report.md").read_text()
+    import re
+    links = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", page)
+    check(len(links) >= 2, f"the page shows figures ({len(links)})")
+    check(all((out / "report" / l).is_file() for l in links), "every figure the page links is in the folder")
+    check("Not run: the seven shots (31.75 mm). Command: `make -C pipelines shots`" in page, "shots listed as not run")
+    for run_dir in list(sweep.glob("v*")) + list((out / "sweep" / "t0.025").glob("v*")):
+        res = json.loads((run_dir / "result.json").read_text())
+        check(res["provenance"]["config_hash"] in page, f"{run_dir.name}: config hash in the provenance")
+    if FAILURES:
+        print(f"{len(FAILURES)} check(s) failed")
+        sys.exit(1)
+    print("all checks passed")
+
+
+if __name__ == "__main__":
+    main()
