@@ -35,26 +35,29 @@ def model(v, a, v_bl, p):
     return a * x ** (1.0 / p)
 
 
+def best_on(v, vr, vbl_grid, p_grid):
+    """The least-squares (a, v_bl, p, sse) over a grid of (v_bl, p); a solved exactly for each and clipped to
+    [0, 1] (vr / v -> a as v -> infinity: a residual faster than the impact is not physical)."""
+    B, P = np.meshgrid(vbl_grid, p_grid, indexing="ij")
+    X = np.clip(v[None, None, :] ** P[..., None] - B[..., None] ** P[..., None], 0.0, None) ** (1.0 / P[..., None])
+    denom = (X * X).sum(axis=-1)
+    A = np.where(denom > 0, (X * vr).sum(axis=-1) / np.where(denom > 0, denom, 1.0), 0.0)
+    A = np.clip(A, 0.0, 1.0)
+    sse = ((A[..., None] * X - vr) ** 2).sum(axis=-1)
+    k = np.unravel_index(np.argmin(sse), sse.shape)
+    return A[k], B[k], P[k], sse[k]
+
+
 def fit(v, vr, p_fixed=None):
     v = np.asarray(v, dtype=float)
     vr = np.asarray(vr, dtype=float)
     perforating = v[vr > 0]
     v_top = perforating.min() if perforating.size else v.max()
 
-    def best_on(vbl_grid, p_grid):
-        B, P = np.meshgrid(vbl_grid, p_grid, indexing="ij")
-        X = np.clip(v[None, None, :] ** P[..., None] - B[..., None] ** P[..., None], 0.0, None) ** (1.0 / P[..., None])
-        denom = (X * X).sum(axis=-1)
-        A = np.where(denom > 0, (X * vr).sum(axis=-1) / np.where(denom > 0, denom, 1.0), 0.0)
-        A = np.clip(A, 0.0, 1.0)  # vr / v -> a as v -> infinity: a residual faster than the impact is not physical
-        sse = ((A[..., None] * X - vr) ** 2).sum(axis=-1)
-        k = np.unravel_index(np.argmin(sse), sse.shape)
-        return A[k], B[k], P[k], sse[k]
-
     p_grid = np.array([p_fixed]) if p_fixed else np.arange(0.5, 6.0001, 0.01)
-    a, vbl, p, sse = best_on(np.arange(0.0, v_top, 0.5), p_grid)
+    a, vbl, p, sse = best_on(v, vr, np.arange(0.0, v_top, 0.5), p_grid)
     p_fine = np.array([p_fixed]) if p_fixed else np.linspace(max(0.3, p - 0.02), p + 0.02, 201)
-    a, vbl, p, sse = best_on(np.linspace(max(0.0, vbl - 1.0), min(v_top - 1e-6, vbl + 1.0), 201), p_fine)
+    a, vbl, p, sse = best_on(v, vr, np.linspace(max(0.0, vbl - 1.0), min(v_top - 1e-6, vbl + 1.0), 201), p_fine)
     return {"a": float(a), "v_bl_m_s": float(vbl), "p": float(p), "points": int(v.size),
             "rms_m_s": float(math.sqrt(sse / v.size))}
 
@@ -68,23 +71,13 @@ def fit_fast(v, vr, p_fixed=None):
     perforating = v[vr > 0]
     v_top = perforating.min() if perforating.size else v.max()
 
-    def best_on(vbl_grid, p_grid):
-        B, P = np.meshgrid(vbl_grid, p_grid, indexing="ij")
-        X = np.clip(v[None, None, :] ** P[..., None] - B[..., None] ** P[..., None], 0.0, None) ** (1.0 / P[..., None])
-        denom = (X * X).sum(axis=-1)
-        A = np.where(denom > 0, (X * vr).sum(axis=-1) / np.where(denom > 0, denom, 1.0), 0.0)
-        A = np.clip(A, 0.0, 1.0)
-        sse = ((A[..., None] * X - vr) ** 2).sum(axis=-1)
-        k = np.unravel_index(np.argmin(sse), sse.shape)
-        return A[k], B[k], P[k], sse[k]
-
     db, dp = 5.0, 0.05
     p_grid = np.array([p_fixed]) if p_fixed else np.arange(0.5, 6.0001, dp)
-    a, vbl, p, sse = best_on(np.arange(0.0, v_top, db), p_grid)
+    a, vbl, p, sse = best_on(v, vr, np.arange(0.0, v_top, db), p_grid)
     for _ in range(2):
         b_grid = np.clip(vbl + np.linspace(-db, db, 21), 0.0, v_top - 1e-6)
         p_grid = np.array([p_fixed]) if p_fixed else np.clip(p + np.linspace(-dp, dp, 21), 0.3, None)
-        a, vbl, p, sse = best_on(np.unique(b_grid), np.unique(p_grid))
+        a, vbl, p, sse = best_on(v, vr, np.unique(b_grid), np.unique(p_grid))
         db, dp = db / 10.0, dp / 10.0
     return {"a": float(a), "v_bl_m_s": float(vbl), "p": float(p), "points": int(v.size),
             "rms_m_s": float(math.sqrt(sse / v.size))}
