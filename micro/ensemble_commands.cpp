@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -120,75 +121,242 @@ std::vector<std::size_t> selected_cells(const AnalysisEnsembleSettings& e, const
   return cells;
 }
 
-}  // namespace
+// Everything a run reads before it analyses anything (bad input fails here, at once).
+struct EnsembleInputs {
+  AnalysisEnsembleSettings e;
+  std::vector<CellSettings> per_size;  // the cell settings of each size (validated)
+  std::string post_hash;
+  nlohmann::json analysis;  // a copy: the Config is not read from the workers
+  std::string source;
+  std::string config_hash;
+  CellAnalyzer analyzer;
+};
 
-int run_ensemble_command(const std::string& config_path, const std::vector<std::string>& overrides_in,
-                         const fs::path& out, int jobs, const CellAnalyzerFactory& factory,
-                         const EnsembleSelection& selection) {
-  const auto t0 = std::chrono::steady_clock::now();
+EnsembleInputs read_inputs(const std::string& config_path, const std::vector<std::string>& overrides_in,
+                           const CellAnalyzerFactory& factory) {
+  EnsembleInputs in;
   std::vector<std::string> overrides = overrides_in;
   const std::vector<std::string> cli_cell_overrides = take_cell_overrides(overrides);
   const Config cfg = Config::load(config_path, overrides);
-  const AnalysisEnsembleSettings e = read_settings(cfg);
+  in.e = read_settings(cfg);
   const std::vector<std::string> cell_overrides = config_cell_overrides(cfg, cli_cell_overrides);
   const Config analysis = cfg.section("analysis");
-  const CellAnalyzer analyzer = factory(analysis, e.post.grid_max_strain);
+  in.analyzer = factory(analysis, in.e.post.grid_max_strain);
   cfg.finish();
-  // Validate every size before analysing anything, so bad input fails at once.
-  std::vector<CellSettings> per_size;
-  for (double size : e.sizes_m) per_size.push_back(load_cell_settings(e.cell_config, cell_overrides, size));
-  const std::string post_hash = post_options_hash(e.post);
-  const nlohmann::json analysis_json = analysis.json();  // copies: the Config is not read from the workers
-  const std::string source = cfg.source();
+  for (double size : in.e.sizes_m) in.per_size.push_back(load_cell_settings(in.e.cell_config, cell_overrides, size));
+  in.post_hash = post_options_hash(in.e.post);
+  in.analysis = analysis.json();
+  in.source = cfg.source();
+  in.config_hash = cfg.hash();
+  return in;
+}
 
+// Cell k's job (k = size index x realizations + realization).
+CellJob cell_job(const EnsembleInputs& in, const fs::path& out, std::size_t k) {
+  const AnalysisEnsembleSettings& e = in.e;
+  const std::size_t i = k / e.realizations, r = k % e.realizations;
+  CellJob job;
+  job.size_m = e.sizes_m[i];
+  job.size_index = i;
+  job.realization = r;
+  job.seed = derive_cell_seed(e.base_seed, i, r);
+  job.out_dir = out / size_label(job.size_m) / fmt::format("cell_{:02d}", r);
+  job.settings = in.per_size[i];
+  job.settings.seed = job.seed;
+  job.cell_config = e.cell_config;
+  job.analysis = in.analysis;
+  job.curve_end_strain = e.post.grid_max_strain;
+  job.analysis_source = in.source;
+  return job;
+}
+
+// Reloads a finished run of the cell when one of the same cell and analysis is on disk (a failed one
+// only when it is not to be retried); true when it did.
+bool reload_cell(const EnsembleInputs& in, const EnsembleSelection& selection, CellOutcome& o) {
+  std::optional<StoredCell> stored = load_cell_results(o.job.out_dir, cell_hash(o.job), in.post_hash);
+  if (!stored || (stored->response.status == CellStatus::Failed && in.e.retry_failed && !selection.assemble_only))
+    return false;
+  o.result = post_process(std::move(stored->response), in.e.post);
+  o.result.reloaded = true;
+  // Post-processing options changed since: refresh the derived data in the cell's files.
+  if (!stored->post_hash_matches) write_cell_results(o.job.out_dir, o.job, o.result, in.e.post, "uhpc-micro ensemble");
+  return true;
+}
+
+// Generates, meshes and analyses one cell and writes its results (a cell that cannot be generated is a
+// failed cell, not a failed run).
+void analyse_cell(const EnsembleInputs& in, CellOutcome& o) {
+  CellJob& job = o.job;
+  fs::create_directories(job.out_dir);
+  CellResponse response;
+  try {
+    prepare_cell(job, "uhpc-micro ensemble");
+    response = run_analyzer(in.analyzer, job, [](std::size_t, const CellState&) {});
+  } catch (const CellGenerationError& err) {
+    response.side_m = job.size_m;
+    response.status = CellStatus::Failed;
+    response.diagnostic = std::string("cell generation failed: ") + err.what();
+  }
+  job.cell.reset();  // the geometry and the mesh are not needed any more: free them
+  job.mesh.reset();
+  o.result = post_process(std::move(response), in.e.post);
+  write_cell_results(job.out_dir, job, o.result, in.e.post, "uhpc-micro ensemble");
+  if (o.result.response.status == CellStatus::Failed)
+    spdlog::warn("cell {} (size {:.2f} mm, seed {}) failed: {}", job.out_dir.string(), job.size_m * 1e3, job.seed,
+                 o.result.response.diagnostic);
+}
+
+// Runs `analyse` on the chosen cells that were not reloaded, on `jobs` threads (0: one per hardware
+// thread), largest cells first. The first exception (bad input, or a file that cannot be written) stops
+// the run and is rethrown; finished cells stay on disk.
+void analyse_cells(const std::vector<std::size_t>& chosen, std::vector<CellOutcome>& outcomes, int jobs,
+                   Progress& progress, const std::function<void(CellOutcome&)>& analyse) {
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex error_mutex;
+  std::exception_ptr error;
+  std::size_t threads = jobs > 0 ? static_cast<std::size_t>(jobs) : std::max(1u, std::thread::hardware_concurrency());
+  threads = std::min(threads, chosen.size());
+  const auto worker = [&] {
+#ifdef _OPENMP
+    // [choice] With several cells at once each solve runs serially (its OpenMP loops get one thread in
+    // this worker), so -j N uses N cores without oversubscription; with -j 1 the solve keeps them all.
+    if (threads > 1) omp_set_num_threads(1);
+#endif
+    while (!stop.load()) {
+      const std::size_t taken = next.fetch_add(1);
+      if (taken >= chosen.size()) break;
+      // Largest cells first (sizes are ascending): the longest solves start first and the workers
+      // finish together instead of one of them ending the run alone on a 6.5 mm cell.
+      CellOutcome& o = outcomes[chosen[chosen.size() - 1 - taken]];
+      if (o.result.reloaded) continue;
+      try {
+        analyse(o);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        stop = true;
+      }
+      progress.advance(1, expected_cell_work(o.job.size_m));
+    }
+  };
+  if (threads <= 1) {
+    worker();
+  } else {
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < threads; ++t) pool.emplace_back(worker);
+    for (std::thread& t : pool) t.join();
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+// One size's cells: which count in the mean, their averaged curve and their statistics.
+struct SizeSummary {
+  SizeCurves curves;
+  nlohmann::json json;
+  std::size_t ok = 0, failed = 0, incomplete = 0, suspect = 0, reloaded = 0;
+};
+
+SizeSummary summarize_size(const AnalysisEnsembleSettings& e, const std::vector<CellOutcome>& outcomes, std::size_t i,
+                           const fs::path& out) {
+  SizeSummary z;
+  std::vector<const ResampledCurve*> used;
+  std::vector<double> peaks, e50, E0, dissipated;
+  double bridging_max = 0.0;
+  nlohmann::json failures = nlohmann::json::array(), suspects = nlohmann::json::array(), seeds = nlohmann::json::array();
+  for (std::size_t r = 0; r < e.realizations; ++r) {
+    const CellOutcome& o = outcomes[i * e.realizations + r];
+    const CellResult& res = o.result;
+    seeds.push_back(o.job.seed);
+    if (res.reloaded) ++z.reloaded;
+    if (res.response.status == CellStatus::Failed) {
+      ++z.failed;
+      failures.push_back({{"realization", r},
+                          {"seed", o.job.seed},
+                          {"directory", fs::relative(o.job.out_dir, out).string()},
+                          {"diagnostic", res.response.diagnostic}});
+      continue;
+    }
+    // A discrete operator whose energy parts from the stored energy has a spurious soft mode
+    // (CellResponse::operator_energy_mismatch): such a path is not evidence, whatever its status.
+    if (res.response.operator_energy_mismatch > e.max_operator_mismatch) {
+      ++z.suspect;
+      suspects.push_back({{"realization", r},
+                          {"seed", o.job.seed},
+                          {"directory", fs::relative(o.job.out_dir, out).string()},
+                          {"status", to_string(res.response.status)},
+                          {"operator_energy_mismatch", res.response.operator_energy_mismatch}});
+      continue;
+    }
+    if (!averaged(res)) {
+      ++z.incomplete;
+      continue;
+    }
+    used.push_back(&res.resampled);
+    peaks.push_back(res.features.peak_stress_Pa);
+    if (res.features.strain_at_half_damage) e50.push_back(*res.features.strain_at_half_damage);
+    E0.push_back(res.response.E0_bar_Pa);
+    dissipated.push_back(res.features.dissipated_per_area_J_m3);
+    bridging_max = std::max(bridging_max, res.path.max_abs_difference);
+  }
+  z.curves = size_curves(e.sizes_m[i], e.post.grid, used);
+  z.ok = e.realizations - z.failed;
+  const auto or_null = [&](double v) { return used.empty() ? nlohmann::json(nullptr) : nlohmann::json(v); };
+  z.json = {{"cell_size_m", e.sizes_m[i]},
+            {"directory", size_label(e.sizes_m[i])},
+            {"cells", e.realizations},
+            {"cells_ok", z.ok},
+            {"cells_failed", z.failed},
+            {"cells_incomplete", z.incomplete},
+            {"cells_suspect", z.suspect},
+            {"cells_averaged", used.size()},
+            {"cells_reloaded", z.reloaded},
+            {"nominal_strength_Pa", or_null(z.curves.nominal_strength_Pa)},
+            {"strain_at_nominal_strength", or_null(z.curves.strain_at_nominal_strength)},
+            {"peak_stress_Pa", spread_json(peaks)},
+            {"strain_at_half_damage", spread_json(e50)},
+            {"E0_bar_Pa", spread_json(E0)},
+            {"dissipated_energy_density_J_m3", spread_json(dissipated)},
+            {"bridging_max_abs_difference", bridging_max},
+            {"seeds", seeds},
+            {"failures", failures},
+            {"suspects", suspects}};
+  const Spread sp = spread(peaks), se = spread(e50);
+  std::printf("%8.2f %6zu %6zu %10zu %8zu %8zu %18.3f %12.3f +- %7.3f %20.4g\n", e.sizes_m[i] * 1e3, e.realizations,
+              z.failed, z.incomplete, z.suspect, used.size(), z.curves.nominal_strength_Pa * 1e-6, sp.mean * 1e-6,
+              sp.std * 1e-6, se.count ? se.mean : std::numeric_limits<double>::quiet_NaN());
+  return z;
+}
+
+}  // namespace
+
+int run_ensemble_command(const std::string& config_path, const std::vector<std::string>& overrides,
+                         const fs::path& out, int jobs, const CellAnalyzerFactory& factory,
+                         const EnsembleSelection& selection) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const EnsembleInputs in = read_inputs(config_path, overrides, factory);
+  const AnalysisEnsembleSettings& e = in.e;
   const std::size_t total = e.sizes_m.size() * e.realizations;
   // A partial run (--only-size, --only-cell) handles its cells alone and writes no ensemble file.
   const std::vector<std::size_t> chosen = selected_cells(e, selection);
   const bool partial = selection.only_size_mm.has_value() || selection.only_cell.has_value();
-  std::vector<CellOutcome> outcomes(total);
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> stop{false};
-  std::mutex error_mutex;
-  std::exception_ptr input_error;
 
-  // Sets up cell k's job and reloads its results when a finished run of the same cell is on disk.
-  const auto prepare_or_reload = [&](std::size_t k) {
-    const std::size_t i = k / e.realizations, r = k % e.realizations;
-    CellOutcome& o = outcomes[k];
-    CellJob& job = o.job;
-    job.size_m = e.sizes_m[i];
-    job.size_index = i;
-    job.realization = r;
-    job.seed = derive_cell_seed(e.base_seed, i, r);
-    job.out_dir = out / size_label(job.size_m) / fmt::format("cell_{:02d}", r);
-    job.settings = per_size[i];
-    job.settings.seed = job.seed;
-    job.cell_config = e.cell_config;
-    job.analysis = analysis_json;
-    job.curve_end_strain = e.post.grid_max_strain;
-    job.analysis_source = source;
-    const std::string hash = cell_hash(job);
-    if (std::optional<StoredCell> stored = load_cell_results(job.out_dir, hash, post_hash);
-        stored && (stored->response.status != CellStatus::Failed || !e.retry_failed || selection.assemble_only)) {
-      o.result = post_process(std::move(stored->response), e.post);
-      o.result.reloaded = true;
-      // Post-processing options changed since: refresh the derived data in the cell's files.
-      if (!stored->post_hash_matches) write_cell_results(job.out_dir, job, o.result, e.post, "uhpc-micro ensemble");
-    }
-  };
   // Every finished cell is reloaded before any solve starts, so the progress count and its ETA are the
   // solves' from the first line (the solves go largest first, and a resumed run's finished cells are
   // often the first realizations of every size).
+  std::vector<CellOutcome> outcomes(total);
   std::size_t reloaded_cells = 0;
-  double reloaded_work = 0;
+  double reloaded_work = 0, total_work = 0;
   std::vector<std::string> unfinished;
   for (std::size_t k : chosen) {
-    prepare_or_reload(k);
-    if (outcomes[k].result.reloaded) {
+    CellOutcome& o = outcomes[k];
+    o.job = cell_job(in, out, k);
+    total_work += expected_cell_work(o.job.size_m);
+    if (reload_cell(in, selection, o)) {
       ++reloaded_cells;
-      reloaded_work += expected_cell_work(outcomes[k].job.size_m);
+      reloaded_work += expected_cell_work(o.job.size_m);
     } else {
-      unfinished.push_back(fs::relative(outcomes[k].job.out_dir, out).string());
+      unfinished.push_back(fs::relative(o.job.out_dir, out).string());
     }
   }
   // --assemble-only analyses nothing: the cells must all be there, finished with this configuration.
@@ -203,168 +371,47 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   ProgressOptions po;
   po.unit = "cells";
   Progress progress("cells", chosen.size(), po);
-  double total_work = 0;
-  for (std::size_t k : chosen) total_work += expected_cell_work(e.sizes_m[k / e.realizations]);
   progress.set_work_total(total_work);
   if (reloaded_cells > 0) {
     spdlog::info("{} of {} cells reloaded from {}", reloaded_cells, chosen.size(), out.string());
     progress.skip(reloaded_cells, reloaded_work);
   }
-
-  const auto do_cell = [&](std::size_t k) {
-    CellOutcome& o = outcomes[k];
-    CellJob& job = o.job;
-    fs::create_directories(job.out_dir);
-    CellResponse response;
-    try {
-      prepare_cell(job, "uhpc-micro ensemble");
-      response = run_analyzer(analyzer, job, [](std::size_t, const CellState&) {});
-    } catch (const CellGenerationError& err) {
-      response.side_m = job.size_m;
-      response.status = CellStatus::Failed;
-      response.diagnostic = std::string("cell generation failed: ") + err.what();
-    }
-    job.cell.reset();  // the geometry and the mesh are not needed any more: free them
-    job.mesh.reset();
-    o.result = post_process(std::move(response), e.post);
-    write_cell_results(job.out_dir, job, o.result, e.post, "uhpc-micro ensemble");
-    if (o.result.response.status == CellStatus::Failed)
-      spdlog::warn("cell {} (size {:.2f} mm, seed {}) failed: {}", job.out_dir.string(), job.size_m * 1e3, job.seed,
-                   o.result.response.diagnostic);
-  };
-  std::size_t threads = jobs > 0 ? static_cast<std::size_t>(jobs) : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min(threads, chosen.size());
-  const auto worker = [&] {
-#ifdef _OPENMP
-    // [choice] With several cells at once each solve runs serially (its OpenMP loops get one thread in
-    // this worker), so -j N uses N cores without oversubscription; with -j 1 the solve keeps them all.
-    if (threads > 1) omp_set_num_threads(1);
-#endif
-    while (!stop.load()) {
-      const std::size_t taken = next.fetch_add(1);
-      if (taken >= chosen.size()) break;
-      // Largest cells first (sizes are ascending): the longest solves start first and the workers
-      // finish together instead of one of them ending the run alone on a 6.5 mm cell.
-      const std::size_t k = chosen[chosen.size() - 1 - taken];
-      if (outcomes[k].result.reloaded) continue;
-      try {
-        do_cell(k);
-      } catch (...) {
-        // Bad input (or a file that cannot be written) stops the ensemble; finished cells stay on disk.
-        const std::lock_guard<std::mutex> lock(error_mutex);
-        if (!input_error) input_error = std::current_exception();
-        stop = true;
-      }
-      progress.advance(1, expected_cell_work(outcomes[k].job.size_m));
-    }
-  };
-  if (threads <= 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (std::size_t t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (std::thread& t : pool) t.join();
-  }
-  if (input_error) std::rethrow_exception(input_error);
+  analyse_cells(chosen, outcomes, jobs, progress, [&](CellOutcome& o) { analyse_cell(in, o); });
   progress.finish();
+  const auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
 
   if (partial) {
     std::size_t failed = 0;
     for (std::size_t k : chosen)
       if (outcomes[k].result.response.status == CellStatus::Failed) ++failed;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("%zu of %zu cells selected (%zu reloaded), %zu failed, in %.1f s; ensemble.h5 and summary.json are "
                 "written by a run over every cell (e.g. --assemble-only once all are finished)\n",
-                chosen.size(), total, reloaded_cells, failed, wall);
+                chosen.size(), total, reloaded_cells, failed, wall());
     return kExitOk;
   }
 
-  // Per-size statistics.
+  // Per-size statistics, the ensemble file and the summary.
   std::vector<SizeCurves> curves;
   nlohmann::json sizes = nlohmann::json::array();
   std::size_t ok_total = 0, failed_total = 0, incomplete_total = 0, suspect_total = 0, reloaded_total = 0;
   std::printf("%8s %6s %6s %10s %8s %8s %18s %22s %20s\n", "size_mm", "cells", "failed", "incomplete", "suspect",
               "averaged", "nominal_MPa", "peak_MPa mean +- std", "e(d=0.5) mean");
   for (std::size_t i = 0; i < e.sizes_m.size(); ++i) {
-    std::vector<const ResampledCurve*> used;
-    std::vector<double> peaks, e50, E0, dissipated;
-    double bridging_max = 0.0;
-    std::size_t failed = 0, incomplete = 0, suspect = 0, reloaded = 0;
-    nlohmann::json failures = nlohmann::json::array(), suspects = nlohmann::json::array(),
-                   seeds = nlohmann::json::array();
-    for (std::size_t r = 0; r < e.realizations; ++r) {
-      const CellOutcome& o = outcomes[i * e.realizations + r];
-      const CellResult& res = o.result;
-      seeds.push_back(o.job.seed);
-      if (res.reloaded) ++reloaded;
-      if (res.response.status == CellStatus::Failed) {
-        ++failed;
-        failures.push_back({{"realization", r},
-                            {"seed", o.job.seed},
-                            {"directory", fs::relative(o.job.out_dir, out).string()},
-                            {"diagnostic", res.response.diagnostic}});
-        continue;
-      }
-      // A discrete operator whose energy parts from the stored energy has a spurious soft mode
-      // (CellResponse::operator_energy_mismatch): such a path is not evidence, whatever its status.
-      if (res.response.operator_energy_mismatch > e.max_operator_mismatch) {
-        ++suspect;
-        suspects.push_back({{"realization", r},
-                            {"seed", o.job.seed},
-                            {"directory", fs::relative(o.job.out_dir, out).string()},
-                            {"status", to_string(res.response.status)},
-                            {"operator_energy_mismatch", res.response.operator_energy_mismatch}});
-        continue;
-      }
-      if (!averaged(res)) {
-        ++incomplete;
-        continue;
-      }
-      used.push_back(&res.resampled);
-      peaks.push_back(res.features.peak_stress_Pa);
-      if (res.features.strain_at_half_damage) e50.push_back(*res.features.strain_at_half_damage);
-      E0.push_back(res.response.E0_bar_Pa);
-      dissipated.push_back(res.features.dissipated_per_area_J_m3);
-      bridging_max = std::max(bridging_max, res.path.max_abs_difference);
-    }
-    const SizeCurves c = size_curves(e.sizes_m[i], e.post.grid, used);
-    curves.push_back(c);
-    ok_total += e.realizations - failed;
-    failed_total += failed;
-    incomplete_total += incomplete;
-    suspect_total += suspect;
-    reloaded_total += reloaded;
-    sizes.push_back({{"cell_size_m", e.sizes_m[i]},
-                     {"directory", size_label(e.sizes_m[i])},
-                     {"cells", e.realizations},
-                     {"cells_ok", e.realizations - failed},
-                     {"cells_failed", failed},
-                     {"cells_incomplete", incomplete},
-                     {"cells_suspect", suspect},
-                     {"cells_averaged", used.size()},
-                     {"cells_reloaded", reloaded},
-                     {"nominal_strength_Pa", used.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.nominal_strength_Pa)},
-                     {"strain_at_nominal_strength", used.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.strain_at_nominal_strength)},
-                     {"peak_stress_Pa", spread_json(peaks)},
-                     {"strain_at_half_damage", spread_json(e50)},
-                     {"E0_bar_Pa", spread_json(E0)},
-                     {"dissipated_energy_density_J_m3", spread_json(dissipated)},
-                     {"bridging_max_abs_difference", bridging_max},
-                     {"seeds", seeds},
-                     {"failures", failures},
-                     {"suspects", suspects}});
-    const Spread sp = spread(peaks), se = spread(e50);
-    std::printf("%8.2f %6zu %6zu %10zu %8zu %8zu %18.3f %12.3f +- %7.3f %20.4g\n", e.sizes_m[i] * 1e3, e.realizations,
-                failed, incomplete, suspect, used.size(), c.nominal_strength_Pa * 1e-6, sp.mean * 1e-6, sp.std * 1e-6,
-                se.count ? se.mean : std::numeric_limits<double>::quiet_NaN());
+    SizeSummary z = summarize_size(e, outcomes, i, out);
+    curves.push_back(std::move(z.curves));
+    sizes.push_back(std::move(z.json));
+    ok_total += z.ok;
+    failed_total += z.failed;
+    incomplete_total += z.incomplete;
+    suspect_total += z.suspect;
+    reloaded_total += z.reloaded;
   }
-
   std::vector<double> skipped;
   const Ensemble ensemble = to_ensemble(e.post.grid, curves, &skipped);
   const Provenance provenance =
-      Provenance::make("uhpc-micro ensemble", fnv1a64_hex(cfg.hash() + per_size.front().config_hash), e.base_seed);
+      Provenance::make("uhpc-micro ensemble", fnv1a64_hex(in.config_hash + in.per_size.front().config_hash), e.base_seed);
   if (ensemble.size_count() > 0) write_ensemble(out / "ensemble.h5", ensemble, provenance);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall_s = wall();
   const nlohmann::json summary = {
       {"format", "uhpc-micro-ensemble/1"},
       {"base_seed", e.base_seed},
@@ -383,11 +430,11 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
       {"sizes_without_cells_m", skipped},
       {"post_options", post_options_json(e.post)},
       {"sizes", sizes},
-      {"wall_s", wall},
+      {"wall_s", wall_s},
       {"provenance", provenance.to_json()}};
   write_text_atomic(out / "summary.json", summary.dump(2) + "\n");
   std::printf("%zu cells (%zu reloaded), %zu failed, %zu incomplete, %zu suspect, in %.1f s\n", total, reloaded_total,
-              failed_total, incomplete_total, suspect_total, wall);
+              failed_total, incomplete_total, suspect_total, wall_s);
   if (failed_total > 0) spdlog::warn("{} cells failed: see {}", failed_total, (out / "summary.json").string());
   if (!skipped.empty())
     throw NumericalError(fmt::format("{} of {} sizes have no cell to average ({}); see {}", skipped.size(),

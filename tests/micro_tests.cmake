@@ -14,3 +14,6 @@ uhpc_add_test(verification verification/test_micro_cohesive_strip.cpp uhpc_micro
 uhpc_add_test(verification verification/test_micro_porous_cell.cpp uhpc_micro)
 uhpc_add_test(unit unit/test_micro_field_transfer.cpp uhpc_micro)
 uhpc_add_test(unit unit/test_micro_preconditioned_gmres.cpp uhpc_micro)
+uhpc_add_test(unit unit/test_micro_bordered_tangent_solver.cpp uhpc_micro)
+uhpc_add_test(unit unit/test_micro_energy_books.cpp uhpc_micro)
+uhpc_add_test(unit unit/test_micro_path_steps.cpp uhpc_micro)

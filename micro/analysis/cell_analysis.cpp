@@ -10,7 +10,9 @@
 
 #include "cohesive_assembly.hpp"
 #include "field_transfer.hpp"
-#include "preconditioned_gmres.hpp"
+#include "path_steps.hpp"
+#include "bordered_tangent_solver.hpp"
+#include "energy_books.hpp"
 #include "uniaxial_cell.hpp"
 
 namespace uhpc::micro {
@@ -24,9 +26,6 @@ struct Stage {
   std::vector<Crack> cracks;  // what em was built on
 };
 
-// What a path step holds: the far-face displacement, the crack-opening integral over all cohesive
-// points, or the opening integral over the process zone only (zone_ below).
-enum class Hold { Lambda, Opening, Zone };
 
 struct NewtonResult {
   bool ok = false;
@@ -38,7 +37,12 @@ class Analysis {
  public:
   Analysis(const CellGeometry& cell, const CellDiscretization& mesh, const CellMaterial& material,
            const CellAnalysisOptions& o)
-      : cell_(cell), mesh_(mesh), o_(o) {
+      : cell_(cell), mesh_(mesh), o_(o),
+        tangent_(o.krylov_iterations),
+        books_(o.energy_tolerance),
+        steps_({o.opening_increment, o.min_opening_increment, o.max_opening_increment},
+               {o.strain_increment, o.min_strain_increment, o.max_strain_increment}, o.step_growth),
+        zone_mode_(o.zone_control == ZoneControl::Always) {
     law_.tensile_strength_Pa = material.tensile_strength_Pa;
     law_.fracture_energy_J_m2 = material.fracture_energy_J_m2;
     law_.activation_ratio = o.activation_ratio;
@@ -73,62 +77,26 @@ class Analysis {
   std::vector<std::vector<CohesiveHistory>> history_;  // per crack: segment x Gauss point
   Stage stage_;
   long stage_id_ = 0;
-  std::unique_ptr<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>> lu_;
-  long lu_key_ = -1;
-  Eigen::SparseMatrix<double> J_;      // the bordered tangent lu_ factorized
-  Eigen::SparseMatrix<double> J_new_;  // the current one, when GMRES solves it with lu_
-  double lu_row_scale_ = 1.0, new_row_scale_ = 1.0;  // the constraint row's scale in J_, J_new_
-  bool last_by_krylov_ = false;  // the last correction solved J_new_ by GMRES (J_ is older)
-  std::size_t factorizations_ = 0, krylov_corrections_ = 0, krylov_products_ = 0;
+  BorderedTangentSolver tangent_;
   Eigen::VectorXd d_;
   double lambda_ = 0.0;
   double scale_ = 1.0;  // residual scale
   CohesiveEvaluation eval_;
-  // Path bookkeeping.
-  double work_ = 0.0, last_force_ = 0.0, last_lambda_ = 0.0;
-  double max_work_ = 0.0, operator_mismatch_ = 0.0;  // CellResponse::operator_energy_mismatch
-  // stored + dissipated - work at the last accepted state (or after an unload): a step may not raise
-  // it by more than CellAnalysisOptions::energy_tolerance x the largest work.
-  double imbalance_ = 0.0;
-  struct Books {
-    double work, last_force, last_lambda, max_work, operator_mismatch;
-  };
-  Books books() const { return {work_, last_force_, last_lambda_, max_work_, operator_mismatch_}; }
-  void restore_books(const Books& b) {
-    work_ = b.work;
-    last_force_ = b.last_force;
-    last_lambda_ = b.last_lambda;
-    max_work_ = b.max_work;
-    operator_mismatch_ = b.operator_mismatch;
-  }
-  static double imbalance(const CellState& s) {
-    return s.accounted_energy_J_m() - s.external_work_J_m;
-  }
-  // The energy created since the last accepted state, if beyond the tolerance (else 0), for a state of
-  // this imbalance.
-  double excess(double imbalance_now) const {
-    const double created = imbalance_now - imbalance_;
-    return created > o_.energy_tolerance * std::max(max_work_, 1e-300) ? created : 0.0;
-  }
-  double excess_energy(const CellState& s) const { return excess(imbalance(s)); }
-  // stored + dissipated - work at the current state, leaving the bookkeeping as it was.
+  EnergyBooks books_;
+  double excess_energy(const CellState& s) const { return books_.excess(EnergyBooks::imbalance(s)); }
+  // stored + dissipated - work at the current state, leaving the books as they were.
   double current_imbalance() {
-    const Books b = books();
-    const double v = imbalance(state(0));
-    restore_books(b);
+    const EnergyBooks::Work w = books_.work_books();
+    const double v = EnergyBooks::imbalance(state(0));
+    books_.restore(w);
     return v;
   }
-  double excess_energy() { return excess(current_imbalance()); }
+  double excess_energy() { return books_.excess(current_imbalance()); }
   double peak_ = 0.0;  // the largest sigma_bar so far
   void note_peak(const CellState& s) { peak_ = std::max(peak_, s.sigma_bar_Pa); }
   // GrowthFallback::UnloadAndRegrow: how often, whether the last grow() unloaded, and the dissipated
   // energy at the last unload (reloading ends when a point dissipates again).
-  std::size_t unloads_ = 0, jumps_ = 0;
-  double jump_dissipated_ = 0.0;  // JumpFallback::Relax: energy released in jumps so far
-  void book_jump(double released) {
-    jump_dissipated_ += std::max(released, 0.0);
-    ++jumps_;
-  }
+  std::size_t unloads_ = 0;
   bool unloaded_ = false, reloading_ = false;
   double reload_dissipated_ = 0.0, unload_strain_ = 0.0;
   // The first reload step is a linear one under displacement control to this lambda (halved until
@@ -220,6 +188,36 @@ class Analysis {
     d_ = s.d;
     lambda_ = s.lambda;
   }
+  // The path: what a step holds and targets, and how it ends.
+  struct StepPlan {
+    bool jump = false;     // relax() at the next strain (no continuation at the smallest step before)
+    bool reload = false;   // the first, linear reload step after an unloading
+    bool opening = false;  // a crack-opening hold (PathControl::CrackOpening, once there are cracks)
+    bool zone = false;     // on the process zone's opening (after a fold of the global one)
+    Hold hold = Hold::Lambda;
+    double target = 0.0;
+    double opening_before = 0.0;  // the opening integral at the start of the step
+  };
+  enum class StepEnd { Accepted, Retry, Stop };
+  bool elastic_branch();  // 1.; false when the run ends there
+  bool first_cracking();  // 2.; false when the run ends there
+  StepPlan plan_step();
+  StepEnd path_step(int step);  // 3.
+  StepEnd after_accepted(const StepPlan& p, int iterations);
+  // Back to the step's start with a smaller step; false when there is none (or the step was a jump).
+  bool cut(const StepPlan& p, const Snapshot& start);
+  StepEnd jump_or_fail(const StepPlan& p, const std::string& diagnostic);
+  StepEnd retry(const StepPlan& p, const Snapshot& start, const std::string& diagnostic);
+  bool in_compression() const;
+  void record(const CellState& s);  // a state of the response (and to the observer)
+  void accept(const CellState& s);  // an accepted path state: recorded, the books' reference, the peak
+  CellResponse out_;
+  const FractureObserver* observer_ = nullptr;
+  PathSteps steps_;
+  bool zone_mode_ = false;
+  std::string opening_failure_;  // why the crack-opening step failed before the zone took over
+  std::string jump_reason_;      // set where the path has no continuation: the next step is a jump
+
   std::vector<TipCriterion> criteria();
   double max_ratio(const std::vector<TipCriterion>& t) const {
     double r = -std::numeric_limits<double>::infinity();
@@ -247,7 +245,7 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
   const Eigen::VectorXd g = hold == Hold::Zone ? sys.opening_gradient(zone_) : sys.opening_gradient();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(g.size());
   const auto N = static_cast<Eigen::Index>(sys.dofs());
-  Eigen::VectorXd r, rhs(N + 1);
+  Eigen::VectorXd r;
   // Backtracking: a full step that raises |r| is halved (up to line_search_halvings times). A point
   // switching branch of the piecewise-linear law (softening/unloading, open/contact) makes Newton
   // cycle between two or four iterates; a shorter step breaks the cycle.
@@ -286,59 +284,17 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
     const long key = viscosity          ? -(1L << 40) - stage_id_
                      : hold == Hold::Zone ? -2 - zone_id_
                                           : 2 * stage_id_ + (hold == Hold::Lambda ? 0 : 1);
-    // The first iteration of a path step solves with the tangent of the last iteration before (same
-    // stage and constraint): it has the points that were softening still softening, which is the
-    // better predictor, and the fresh tangent at the converged state would put them on their secants
-    // (their history has just been committed). Every later iteration is full Newton.
-    const bool reuse = it == 0 && lu_ && key == lu_key_;
-    // GMRES preconditioned with the factorization at hand (same pattern) solves a tangent that has
-    // changed at cohesive points only since; converged to a hundredth of the tolerance, Newton cannot
-    // tell its correction from the direct one. Otherwise that tangent is factorized.
-    const bool krylov = lu_ && key == lu_key_ && o_.krylov_iterations > 0 && (!reuse || last_by_krylov_);
     // The constraint row is scaled so that its tolerance is the residual's (GMRES minimizes one norm
-    // over both); a reused tangent keeps the scale it was made with.
-    if (!reuse) {
-      new_row_scale_ = tolerance / cscale;
-      J_new_ = hold == Hold::Lambda ? sys.bordered(zero, new_row_scale_) : sys.bordered(g * new_row_scale_, 0.0);
-    }
-    const bool on_new = !reuse || last_by_krylov_;  // the tangent is J_new_, else J_ (factorized)
-    rhs.head(N) = -r;
-    rhs[N] = -cres * (on_new ? new_row_scale_ : lu_row_scale_);
-    Eigen::VectorXd x;
-    bool solved = false;
-    if (krylov) {
-      const GmresResult k = preconditioned_gmres(
-          J_new_, [this](const Eigen::VectorXd& v, Eigen::VectorXd& z) { z = lu_->solve(v); }, rhs,
-          std::max(0.01 * tolerance, 1e-13 * rhs.norm()), o_.krylov_iterations, x);
-      krylov_products_ += static_cast<std::size_t>(k.iterations);
-      solved = k.converged && x.allFinite();
-      if (solved) ++krylov_corrections_;
-    }
-    if (!solved && on_new) {
-      std::swap(J_, J_new_);
-      lu_row_scale_ = new_row_scale_;
-      if (!lu_ || key != lu_key_) {
-        lu_ = std::make_unique<Eigen::UmfPackLU<Eigen::SparseMatrix<double>>>();
-        // No iterative refinement: Newton's own iterations correct the residual; refinement would
-        // only repeat a solve and a residual product per iteration (12 % of a run, same result).
-        lu_->umfpackControl()(UMFPACK_IRSTEP) = 0;
-        lu_->analyzePattern(J_);
-        lu_key_ = key;
-      }
-      lu_->factorize(J_);  // keeps a reference to J_ (a member: it must outlive every solve)
-      ++factorizations_;
-      if (lu_->info() != Eigen::Success) {
-        lu_.reset();
-        res.why = "UMFPACK: singular bordered tangent";
-        return res;
-      }
-    }
-    if (!solved) x = lu_->solve(rhs);
-    last_by_krylov_ = solved;
-    if (!x.allFinite()) {
-      res.why = "UMFPACK: non-finite correction";
+    // over both).
+    const auto assemble = [&](double row_scale) {
+      return hold == Hold::Lambda ? sys.bordered(zero, row_scale) : sys.bordered(g * row_scale, 0.0);
+    };
+    BorderedTangentSolver::Correction c = tangent_.solve(key, it == 0, tolerance / cscale, assemble, r, cres, tolerance);
+    if (!c.ok) {
+      res.why = c.why;
       return res;
     }
+    const Eigen::VectorXd& x = c.x;
     d_prev = d_;
     lambda_prev = lambda_;
     x_prev = x;
@@ -379,7 +335,7 @@ std::string Analysis::grow(int& iterations) {
     // into an unreachable equilibrium) would pass unseen, so they fail the load step instead.
     const auto unreachable = [&](double created) {
       return fmt::format("re-equilibration after crack growth creates energy ({:.3g} of the largest work)",
-                         created / max_work_);
+                         created / books_.largest_work());
     };
     if (o_.growth_fallback == GrowthFallback::AlwaysUnload) {
       if (const double created = excess_energy(); created > 0.0) return unreachable(created);
@@ -452,11 +408,11 @@ std::string Analysis::grow(int& iterations) {
           return "re-equilibration after crack growth failed (" + why + "), and so did the relaxation: " + r;
         }
         const double released = start - current_imbalance();
-        if (released < -o_.energy_tolerance * max_work_) {
+        if (released < -o_.energy_tolerance * books_.largest_work()) {
           restore(before, true);
           return "the relaxation after crack growth creates energy (" + unreachable(-released) + ")";
         }
-        book_jump(released);
+        books_.book_jump(released);
         continue;
       }
       if (const double created = excess_energy(); created > 0.0) return unreachable(created);
@@ -552,12 +508,9 @@ void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const s
   // unloading is -1/2 F lambda; the trapezoid to here books the step that reached this state.
   const double F = stage_.sys->reaction(d_, lambda_);
   unload_strain_ = lambda_ / cell_.side_m;
-  work_ += 0.5 * (last_force_ + F) * (lambda_ - last_lambda_) - 0.5 * F * lambda_;
-  last_force_ = 0.0;
-  last_lambda_ = 0.0;
+  books_.book_unload(lambda_, F, dissipated(flat_history()));
   d_.setZero();
   lambda_ = 0.0;
-  imbalance_ = dissipated(flat_history()) - work_;  // nothing stored at zero load
   for (const std::size_t c : ready) advance_crack(cracks_, c, t[c].direction, cell_, mesh_, o_.growth);
   build_stage();  // the new segments start at zero opening: equilibrium holds exactly
   ++unloads_;
@@ -620,14 +573,9 @@ CellState Analysis::state(int iterations) {
   }
   s.cohesive_energy_J_m = coh;
   s.dissipated_J_m = dissipated(h);
-  s.jump_dissipated_J_m = jump_dissipated_;
-  work_ += 0.5 * (last_force_ + F) * (lambda_ - last_lambda_);
-  last_force_ = F;
-  last_lambda_ = lambda_;
-  s.external_work_J_m = work_;
-  max_work_ = std::max(max_work_, work_);
-  if (max_work_ > 0.0)
-    operator_mismatch_ = std::max(operator_mismatch_, std::abs(sys.operator_energy(d_, lambda_) - stored) / max_work_);
+  s.jump_dissipated_J_m = books_.jump_dissipated();
+  s.external_work_J_m = books_.book_work(lambda_, F);
+  if (books_.largest_work() > 0.0) books_.note_operator_mismatch(std::abs(sys.operator_energy(d_, lambda_) - stored));
   s.max_opening_m = wmax;
   for (std::size_t c = 0; c < cracks_.size(); ++c) {
     s.crack_segments += cracks_[c].active;
@@ -643,249 +591,242 @@ CellState Analysis::state(int iterations) {
 }
 
 CellResponse Analysis::run(const FractureObserver& observer) {
-  CellResponse out;
-  out.side_m = cell_.side_m;
-  out.porosity = cell_.porosity();
-  out.states.push_back(CellState{});
-  if (observer) observer(0, out.states.back());
-  auto emit = [&](const CellState& s) {
-    out.states.push_back(s);
-    if (observer) observer(out.states.size() - 1, s);
-  };
+  observer_ = &observer;
+  out_.side_m = cell_.side_m;
+  out_.porosity = cell_.porosity();
+  record(CellState{});
   build_stage();
-  out.nodes = base_.node_count();
-
-  // 1. The elastic branch: K d1 = f_unit (lambda = 1).
-  {
-    FractureSystem& sys = *stage_.sys;
-    Eigen::VectorXd r;
-    sys.evaluate(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sys.dofs())), 0.0, law_, {}, true, r, eval_);
-    const auto N = static_cast<Eigen::Index>(sys.dofs());
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
-    const Eigen::SparseMatrix<double> J = sys.bordered(zero, 1.0);  // UmfPackLU keeps a reference to it
-    Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu(J);
-    if (lu.info() != Eigen::Success) {
-      out.status = CellStatus::Failed;
-      out.diagnostic = "UMFPACK: the elastic stiffness is singular";
-      return out;
-    }
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(N + 1);
-    rhs[N] = 1.0;
-    const Eigen::VectorXd x = lu.solve(rhs);
-    d_ = x.head(N);
-    lambda_ = 1.0;
+  out_.nodes = base_.node_count();
+  if (elastic_branch() && first_cracking()) {
+    out_.status = CellStatus::StepLimit;
+    for (int step = 0; step < o_.max_steps; ++step)
+      if (path_step(step) == StepEnd::Stop) break;
+    if (out_.status == CellStatus::StepLimit && out_.diagnostic.empty()) out_.diagnostic = "reached max_steps";
   }
-  const Eigen::VectorXd d1 = d_;
-  const double F1 = stage_.sys->reaction(d1, 1.0);
-  out.E0_bar_Pa = F1;  // (F1 / side) / (1 / side)
+  out_.dofs = stage_.em->dof_count();
+  out_.enriched_nodes = stage_.em->enriched_node.size();
+  out_.growth_unloads = unloads_;
+  out_.jumps = books_.jumps();
+  out_.factorizations = tangent_.factorizations();
+  out_.krylov_corrections = tangent_.krylov_corrections();
+  out_.krylov_products = tangent_.krylov_products();
+  out_.operator_energy_mismatch = books_.operator_mismatch();
+  return std::move(out_);
+}
+
+void Analysis::record(const CellState& s) {
+  out_.states.push_back(s);
+  if (*observer_) (*observer_)(out_.states.size() - 1, s);
+}
+
+void Analysis::accept(const CellState& s) {
+  books_.accept(EnergyBooks::imbalance(s));
+  record(s);
+  note_peak(s);
+}
+
+bool Analysis::elastic_branch() {
+  // The response is linear until the first tip reaches f_t: one solve, K d1 = f_unit at lambda = 1,
+  // and the states there are its multiples.
+  FractureSystem& sys = *stage_.sys;
+  const auto N = static_cast<Eigen::Index>(sys.dofs());
+  Eigen::VectorXd r;
+  sys.evaluate(Eigen::VectorXd::Zero(N), 0.0, law_, {}, true, r, eval_);
+  const Eigen::SparseMatrix<double> J = sys.bordered(Eigen::VectorXd::Zero(N), 1.0);  // the LU keeps a reference
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu(J);
+  if (lu.info() != Eigen::Success) {
+    out_.status = CellStatus::Failed;
+    out_.diagnostic = "UMFPACK: the elastic stiffness is singular";
+    return false;
+  }
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(N + 1);
+  rhs[N] = 1.0;
+  const Eigen::VectorXd d1 = lu.solve(rhs).head(N);
+  d_ = d1;
+  lambda_ = 1.0;
+  out_.E0_bar_Pa = sys.reaction(d1, 1.0);  // (F1 / side) / (1 / side)
   const double ratio1 = max_ratio(criteria());
   const double lambda_max = o_.max_strain * cell_.side_m;
   const double lambda_act = ratio1 > 0.0 ? 1.0 / ratio1 : std::numeric_limits<double>::infinity();
   const double lambda_end = std::min(lambda_act, lambda_max);
-  scale_ = stage_.sys->unit_load().norm() * lambda_end;
+  scale_ = sys.unit_load().norm() * lambda_end;
   const int ne = std::max(1, o_.elastic_states);
   for (int k = 1; k <= ne; ++k) {
     lambda_ = lambda_end * k / ne;
     d_ = lambda_ * d1;
-    emit(state(0));
+    record(state(0));
   }
-  imbalance_ = imbalance(out.states.back());
-  note_peak(out.states.back());
+  books_.accept(EnergyBooks::imbalance(out_.states.back()));
+  note_peak(out_.states.back());
   if (!(lambda_act <= lambda_max)) {
-    out.status = CellStatus::StepLimit;
-    out.diagnostic = "no crack reached the growth criterion below max_strain";
-    return out;
+    out_.status = CellStatus::StepLimit;
+    out_.diagnostic = "no crack reached the growth criterion below max_strain";
+    return false;
   }
+  return true;
+}
 
-  // 2. First cracking, then 3. path following.
+bool Analysis::first_cracking() {
   int iterations = 0;
-  std::string why = grow(iterations);
-  if (!why.empty()) {
-    out.status = CellStatus::Failed;
-    out.diagnostic = fmt::format("at e_bar = {:.4e}: {}", lambda_ / cell_.side_m, why);
-    return out;
+  if (const std::string why = grow(iterations); !why.empty()) {
+    out_.status = CellStatus::Failed;
+    out_.diagnostic = fmt::format("at e_bar = {:.4e}: {}", lambda_ / cell_.side_m, why);
+    return false;
   }
-  if (!unloaded_) {
-    emit(state(iterations));
-    note_peak(out.states.back());
-    imbalance_ = imbalance(out.states.back());
-  }
+  if (!unloaded_) accept(state(iterations));
+  return true;
+}
 
-  double dc = o_.opening_increment, de = o_.strain_increment, dz = o_.opening_increment;
-  const bool always_zone = o_.zone_control == ZoneControl::Always;
-  bool zone_mode = always_zone;  // stepping on the process-zone opening (after a fold of the global one)
-  std::string opening_failure;
-  out.status = CellStatus::StepLimit;
-  // Set where the path has no continuation at the smallest step: the next step is a jump (relax()).
-  std::string jump_reason;
-  for (int step = 0; step < o_.max_steps; ++step) {
-    const bool jump = !jump_reason.empty();
-    // A failure at the smallest step becomes a jump, once (JumpFallback::Relax), else the cell fails.
-    const auto jump_or_fail = [&](const std::string& diagnostic) {
-      if (o_.jump == JumpFallback::Relax && !jump && reload_lambda_ <= 0.0) {
-        jump_reason = diagnostic;
-        return true;
-      }
-      out.status = CellStatus::Failed;
-      out.diagnostic = jump ? fmt::format("{}; it followed a jump taken because {}", diagnostic, jump_reason) : diagnostic;
-      return false;
-    };
-    const bool reload = !jump && reload_lambda_ > 0.0;
-    const bool opening = !jump && !reload && o_.control == PathControl::CrackOpening && active_length() > 0.0;
-    const bool zone = opening && zone_mode && select_zone();
-    const Hold hold = zone ? Hold::Zone : opening ? Hold::Opening : Hold::Lambda;
-    const double c0 = stage_.sys->opening_integral(d_);
-    const double target = reload    ? reload_lambda_
-                          : zone    ? stage_.sys->opening_gradient(zone_).dot(d_) + dz * law_.critical_opening() * zone_length_
-                          : opening ? c0 + dc * law_.critical_opening() * active_length()
-                                    : lambda_ + de * cell_.side_m;
-    const Eigen::VectorXd d0 = d_;
-    const double l0 = lambda_;
-    const Snapshot pre = snapshot();
-    std::vector<CohesiveHistory> trial;
-    NewtonResult n;
-    if (jump) {
-      n.why = relax(o_.strain_increment * cell_.side_m, n.iterations);
-      n.ok = n.why.empty();
-      trial = flat_history();  // relax() commits its pseudo-steps
-    } else {
-      n = newton(hold, target, trial);
-    }
-    auto cut = [&]() {
-      if (jump) return false;  // a jump is not cut: it is accepted as it is, or the cell fails
-      d_ = d0;
-      lambda_ = l0;
-      if (reload) {  // below 1/64 of the unloading strain: reload by the ordinary steps instead
-        reload_lambda_ *= 0.5;
-        if (reload_lambda_ < unload_strain_ * cell_.side_m / 64.0) reload_lambda_ = 0.0;
-        return true;
-      }
-      if (zone) dz *= 0.5;
-      else if (opening) dc *= 0.5;
-      else de *= 0.5;
-      return zone ? dz >= o_.min_opening_increment : opening ? dc >= o_.min_opening_increment : de >= o_.min_strain_increment;
-    };
-    if (!n.ok) {
-      if (cut()) continue;
-      // The global opening integral may pass a maximum (points elsewhere close faster than the
-      // process zone opens): the process zone's own opening still grows, so step on it instead.
-      if (opening && !zone && o_.zone_control == ZoneControl::Fallback && select_zone()) {
-        zone_mode = true;
-        dz = o_.opening_increment;
-        dc = o_.opening_increment;
-        opening_failure = n.why;
-        continue;
-      }
-      if (jump_or_fail(fmt::format("at e_bar = {:.4e}, step {}: {} ({}{})", l0 / cell_.side_m, step, n.why,
-                                   jump ? "the jump" : "smallest step",
-                                   zone ? "; the crack-opening step before: " + opening_failure : "")))
-        continue;
-      break;
-    }
-    // The tension path stays at lambda >= 0 and F >= 0 (a snap-back tends to the origin); past it
-    // lies a spurious branch where contact closes the cell around a still-opening process zone.
-    const auto in_compression = [&] { return lambda_ < 0.0 || stage_.sys->reaction(d_, lambda_) < 0.0; };
-    if (!reload && in_compression()) {
-      if (cut()) continue;
-      if (jump_or_fail(fmt::format("at e_bar = {:.4e}, step {}: the smallest step crosses into compression",
-                                   l0 / cell_.side_m, step)))
-        continue;
-      break;
-    }
-    // Overshoot of the growth criterion: cut, so cracks advance close to f_t.
-    const std::vector<CohesiveHistory> committed = flat_history();
-    if (reload && dissipated(trial) > dissipated(committed) + dissipation_round_off()) {
-      cut();
-      continue;
-    }
-    commit(trial);
-    if (reload) {
-      reload_lambda_ = 0.0;
-      scale_to_envelope();
-    }
-    const double ratio = max_ratio(criteria());
-    if (ratio > 1.0 + o_.growth_tolerance) {
-      commit(committed);
-      if (cut()) continue;
-      commit(trial);  // at the smallest step: accept the overshoot
-    }
-    int its = n.iterations;
-    why = grow(its);
-    if (!why.empty()) {
-      // Back to the start of the step (geometry included) with a smaller step.
-      restore(pre, true);
-      if (cut()) continue;
-      if (jump_or_fail(fmt::format("at e_bar = {:.4e}: {} (smallest step)", lambda_ / cell_.side_m, why))) continue;
-      break;
-    }
-    if (unloaded_) continue;  // reload (reload_lambda_), then on with the step sizes in use
-    // The growth's re-equilibration can land on that branch too (a 3.0 mm cell went from e = 3.8e-4 to
-    // -2.3e-4 at -9.6 MPa in one step and was taken as separated).
-    if (!reload && in_compression()) {
-      restore(pre, true);
-      if (cut()) continue;
-      if (jump_or_fail(fmt::format("at e_bar = {:.4e}, step {}: the growth at the smallest step crosses into compression",
-                                   l0 / cell_.side_m, step)))
-        continue;
-      break;
-    }
-    // Energy admissibility: an equilibrium at the end of a step can still be out of reach from its
-    // start (a fragment whose cracks opened past w_c at zero load, dissipating what no work paid for).
-    const Books before = books();
-    CellState next = state(its);
-    if (const double created = excess_energy(next); created > 0.0) {
-      restore_books(before);
-      restore(pre, true);
-      if (cut()) continue;
-      if (jump_or_fail(fmt::format("at e_bar = {:.4e}, step {}: the smallest step creates energy ({:.3g} of the "
-                                   "largest work)", l0 / cell_.side_m, step, created / max_work_)))
-        continue;
-      break;
-    }
-    if (jump) {
-      // What the jump released: the stored and dissipated energy it lost against the work.
-      book_jump(imbalance_ - imbalance(next));
-      next.jump_dissipated_J_m = jump_dissipated_;
-      jump_reason.clear();
-      dc = dz = o_.opening_increment;
-      zone_mode = always_zone;
-    }
-    imbalance_ = imbalance(next);
-    emit(next);
-    const CellState& s = out.states.back();
-    note_peak(s);
-    if (n.iterations <= o_.easy_iterations) {
-      if (zone) dz = std::min(dz * o_.step_growth, o_.max_opening_increment);
-      else if (opening) dc = std::min(dc * o_.step_growth, o_.max_opening_increment);
-      else de = std::min(de * o_.step_growth, o_.max_strain_increment);
-    }
-    // Back to the global opening once it grows again.
-    if (zone && !always_zone && stage_.sys->opening_integral(d_) > c0) zone_mode = false;
-    // Back on the envelope once some point dissipates beyond round-off.
-    if (reloading_ && s.dissipated_J_m > reload_dissipated_ + dissipation_round_off())
-      reloading_ = false;
-    // Separated: sigma_bar below separation_fraction x the peak; on a reload (a secant through the
-    // origin), the stress it would have at the strain it was unloaded from.
-    const double floor = o_.separation_fraction * peak_ * (reloading_ ? s.strain / unload_strain_ : 1.0);
-    if (active_length() > 0.0 && s.sigma_bar_Pa < floor) {
-      out.status = CellStatus::Separated;
-      break;
-    }
-    if (std::abs(s.strain) > o_.max_strain) {
-      out.diagnostic = "reached max_strain";
-      break;
-    }
+Analysis::StepPlan Analysis::plan_step() {
+  StepPlan p;
+  p.jump = !jump_reason_.empty();
+  p.reload = !p.jump && reload_lambda_ > 0.0;
+  p.opening = !p.jump && !p.reload && o_.control == PathControl::CrackOpening && active_length() > 0.0;
+  p.zone = p.opening && zone_mode_ && select_zone();
+  p.hold = p.zone ? Hold::Zone : p.opening ? Hold::Opening : Hold::Lambda;
+  p.opening_before = stage_.sys->opening_integral(d_);
+  const double step = steps_.size(p.hold);
+  p.target = p.reload    ? reload_lambda_
+             : p.zone    ? stage_.sys->opening_gradient(zone_).dot(d_) + step * law_.critical_opening() * zone_length_
+             : p.opening ? p.opening_before + step * law_.critical_opening() * active_length()
+                         : lambda_ + step * cell_.side_m;
+  return p;
+}
+
+bool Analysis::cut(const StepPlan& p, const Snapshot& start) {
+  if (p.jump) return false;  // a jump is not cut: it is accepted as it is, or the cell fails
+  d_ = start.d;
+  lambda_ = start.lambda;
+  if (p.reload) {  // below 1/64 of the unloading strain: reload by the ordinary steps instead
+    reload_lambda_ *= 0.5;
+    if (reload_lambda_ < unload_strain_ * cell_.side_m / 64.0) reload_lambda_ = 0.0;
+    return true;
   }
-  if (out.status == CellStatus::StepLimit && out.diagnostic.empty()) out.diagnostic = "reached max_steps";
-  out.dofs = stage_.em->dof_count();
-  out.enriched_nodes = stage_.em->enriched_node.size();
-  out.growth_unloads = unloads_;
-  out.jumps = jumps_;
-  out.factorizations = factorizations_;
-  out.krylov_corrections = krylov_corrections_;
-  out.krylov_products = krylov_products_;
-  out.operator_energy_mismatch = operator_mismatch_;
-  return out;
+  return steps_.cut(p.hold);
+}
+
+Analysis::StepEnd Analysis::jump_or_fail(const StepPlan& p, const std::string& diagnostic) {
+  // A failure at the smallest step becomes a jump, once (JumpFallback::Relax), else the cell fails.
+  if (o_.jump == JumpFallback::Relax && !p.jump && reload_lambda_ <= 0.0) {
+    jump_reason_ = diagnostic;
+    return StepEnd::Retry;
+  }
+  out_.status = CellStatus::Failed;
+  out_.diagnostic = p.jump ? fmt::format("{}; it followed a jump taken because {}", diagnostic, jump_reason_) : diagnostic;
+  return StepEnd::Stop;
+}
+
+Analysis::StepEnd Analysis::retry(const StepPlan& p, const Snapshot& start, const std::string& diagnostic) {
+  return cut(p, start) ? StepEnd::Retry : jump_or_fail(p, diagnostic);
+}
+
+bool Analysis::in_compression() const {
+  // The tension path stays at lambda >= 0 and F >= 0 (a snap-back tends to the origin); past it lies a
+  // spurious branch where contact closes the cell around a still-opening process zone.
+  return lambda_ < 0.0 || stage_.sys->reaction(d_, lambda_) < 0.0;
+}
+
+Analysis::StepEnd Analysis::path_step(int step) {
+  const StepPlan p = plan_step();
+  const Snapshot start = snapshot();
+  const double e0 = start.lambda / cell_.side_m;
+  std::vector<CohesiveHistory> trial;
+  NewtonResult n;
+  if (p.jump) {
+    n.why = relax(o_.strain_increment * cell_.side_m, n.iterations);
+    n.ok = n.why.empty();
+    trial = flat_history();  // relax() commits its pseudo-steps
+  } else {
+    n = newton(p.hold, p.target, trial);
+  }
+  if (!n.ok) {
+    if (cut(p, start)) return StepEnd::Retry;
+    // The global opening integral may pass a maximum (points elsewhere close faster than the process
+    // zone opens): the process zone's own opening still grows, so step on it instead.
+    if (p.opening && !p.zone && o_.zone_control == ZoneControl::Fallback && select_zone()) {
+      zone_mode_ = true;
+      steps_.reset_openings();
+      opening_failure_ = n.why;
+      return StepEnd::Retry;
+    }
+    return jump_or_fail(p, fmt::format("at e_bar = {:.4e}, step {}: {} ({}{})", e0, step, n.why,
+                                       p.jump ? "the jump" : "smallest step",
+                                       p.zone ? "; the crack-opening step before: " + opening_failure_ : ""));
+  }
+  if (!p.reload && in_compression())
+    return retry(p, start, fmt::format("at e_bar = {:.4e}, step {}: the smallest step crosses into compression", e0, step));
+  const std::vector<CohesiveHistory> committed = flat_history();
+  // The first reload step is linear: it may not dissipate (then its trapezoid work is exact).
+  if (p.reload && dissipated(trial) > dissipated(committed) + dissipation_round_off()) {
+    cut(p, start);
+    return StepEnd::Retry;
+  }
+  commit(trial);
+  if (p.reload) {
+    reload_lambda_ = 0.0;
+    scale_to_envelope();
+  }
+  // Overshoot of the growth criterion: cut, so cracks advance close to f_t.
+  if (max_ratio(criteria()) > 1.0 + o_.growth_tolerance) {
+    commit(committed);
+    if (cut(p, start)) return StepEnd::Retry;
+    commit(trial);  // at the smallest step: accept the overshoot
+  }
+  int iterations = n.iterations;
+  if (const std::string why = grow(iterations); !why.empty()) {
+    restore(start, true);  // back to the start of the step, geometry included, with a smaller step
+    return retry(p, start, fmt::format("at e_bar = {:.4e}: {} (smallest step)", lambda_ / cell_.side_m, why));
+  }
+  if (unloaded_) return StepEnd::Retry;  // reload (reload_lambda_), then on with the step sizes in use
+  // The growth's re-equilibration can land on the compression branch too (a 3.0 mm cell went from
+  // e = 3.8e-4 to -2.3e-4 at -9.6 MPa in one step and was taken as separated).
+  if (!p.reload && in_compression()) {
+    restore(start, true);
+    return retry(p, start, fmt::format("at e_bar = {:.4e}, step {}: the growth at the smallest step crosses into compression",
+                                       e0, step));
+  }
+  // Energy admissibility: an equilibrium at the end of a step can still be out of reach from its start
+  // (a fragment whose cracks opened past w_c at zero load, dissipating what no work paid for).
+  const EnergyBooks::Work before = books_.work_books();
+  CellState next = state(iterations);
+  if (const double created = excess_energy(next); created > 0.0) {
+    books_.restore(before);
+    restore(start, true);
+    return retry(p, start, fmt::format("at e_bar = {:.4e}, step {}: the smallest step creates energy ({:.3g} of the "
+                                       "largest work)", e0, step, created / books_.largest_work()));
+  }
+  if (p.jump) {
+    // What the jump released: the stored and dissipated energy it lost against the work.
+    books_.book_jump(books_.accepted_imbalance() - EnergyBooks::imbalance(next));
+    next.jump_dissipated_J_m = books_.jump_dissipated();
+    jump_reason_.clear();
+    steps_.reset_openings();
+    zone_mode_ = o_.zone_control == ZoneControl::Always;
+  }
+  accept(next);
+  return after_accepted(p, n.iterations);
+}
+
+Analysis::StepEnd Analysis::after_accepted(const StepPlan& p, int iterations) {
+  const CellState& s = out_.states.back();
+  if (iterations <= o_.easy_iterations) steps_.grow(p.hold);
+  // Back to the global opening once it grows again.
+  if (p.zone && o_.zone_control != ZoneControl::Always && stage_.sys->opening_integral(d_) > p.opening_before)
+    zone_mode_ = false;
+  // Back on the envelope once some point dissipates beyond round-off.
+  if (reloading_ && s.dissipated_J_m > reload_dissipated_ + dissipation_round_off()) reloading_ = false;
+  // Separated: sigma_bar below separation_fraction x the peak; on a reload (a secant through the
+  // origin), the stress it would have at the strain it was unloaded from.
+  const double floor = o_.separation_fraction * peak_ * (reloading_ ? s.strain / unload_strain_ : 1.0);
+  if (active_length() > 0.0 && s.sigma_bar_Pa < floor) {
+    out_.status = CellStatus::Separated;
+    return StepEnd::Stop;
+  }
+  if (std::abs(s.strain) > o_.max_strain) {
+    out_.diagnostic = "reached max_strain";
+    return StepEnd::Stop;
+  }
+  return StepEnd::Accepted;
 }
 
 }  // namespace
