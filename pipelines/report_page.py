@@ -46,6 +46,53 @@ class Page:
         self.add("", f"Not run: {what}. Command: `{command}`", "")
 
 
+def paper_table4():
+    """The paper's SDEL constants (data/table4_sdel_constants.csv), by name; {} when the file is absent."""
+    path = pathlib.Path(__file__).resolve().parent.parent / "data" / "table4_sdel_constants.csv"
+    if not path.is_file():
+        return {}
+    rows = [line.split(",") for line in path.read_text().splitlines() if line and not line.startswith("#")]
+    return {r[0]: float(r[2]) for r in rows[1:]}
+
+
+def calibration_lines(rep, paper):
+    """uhpc-calibrate's fit_report.json as Markdown: the constants with their standard errors beside the
+    paper's Table 4, the fit per cell size, the size effect of the nominal strength, the notes, provenance."""
+    sdel, lines = rep.get("sdel", {}), []
+    constants, se = sdel.get("constants", {}), sdel.get("standard_errors", {})
+    rse, ident = sdel.get("relative_standard_errors", {}), sdel.get("identifiable", {})
+    if constants:
+        lines += ["", "| constant | fitted | standard error | relative | identifiable | paper (Table 4) |",
+                  "|---|---|---|---|---|---|"]
+        for k, v in constants.items():
+            lines.append(f"| {k} | {v:.4g} | {se[k]:.3g} | {rse[k]:.3f} | {'yes' if ident.get(k) else 'no'} | "
+                         f"{paper[k]:.4g} |" if k in se and k in rse and k in paper else f"| {k} | {v:.4g} | | | | |")
+        lines += ["", f"Cost {sdel.get('cost', float('nan')):.4g} over {sdel.get('samples', '?')} samples; "
+                  f"{sdel.get('starts_agreeing', '?')} of {sdel.get('starts_run', '?')} starts agree on the optimum."]
+    per_size = sdel.get("per_size", [])
+    if per_size:
+        lines += ["", "| cell size mm | lambda | R^2 | RMS of d | max abs residual | samples |", "|---|---|---|---|---|---|"]
+        lines += [f"| {1e3 * r['size_m']:.2f} | {r['lambda']:.4g} | {r['r_squared']:.4f} | {r['rms']:.4f} | "
+                  f"{r['max_abs_residual']:.4f} | {r['samples']} |" for r in per_size]
+    size = rep.get("size_effect", {})
+    if size.get("sizes_m"):
+        lines += ["", f"Size effect of the nominal strength ({size.get('law', '')}): B = {size['B']:.4g}, "
+                  f"D0 = {1e3 * size['D0_m']:.4g} mm, R^2 {size['r_squared']:.3f}.", "",
+                  "| cell size mm | nominal strength MPa | fitted MPa |", "|---|---|---|"]
+        lines += [f"| {1e3 * d:.2f} | {1e-6 * n:.3f} | {1e-6 * f:.3f} |"
+                  for d, n, f in zip(size["sizes_m"], size["nominal_strength_Pa"], size["fitted_Pa"])]
+    notes = list(sdel.get("notes", [])) + ([size["note"]] if size.get("note") else [])
+    if notes:
+        lines += [""] + [f"- {n}" for n in notes]
+    ens, prov = rep.get("ensemble", {}), rep.get("provenance", {})
+    ens_prov = ens.get("provenance", {})
+    lines += ["", f"Ensemble `{ens.get('file', '?')}` (made by {ens_prov.get('program', '?')}, commit "
+              f"{ens_prov.get('git_commit', '?')}, {ens_prov.get('date_utc', '?')}); fitted by "
+              f"{prov.get('program', '?')} {prov.get('version', '')}, commit {prov.get('git_commit', '?')}, "
+              f"config hash {prov.get('config_hash', '?')}, {prov.get('date_utc', '?')}."]
+    return lines
+
+
 def provenance_rows(root):
     rows = []
     for res in sorted(root.rglob("result.json")):
@@ -92,11 +139,9 @@ def main():
     cal = root / "calibrate"
     if (cal / "sdel.json").is_file():
         if (cal / "fit_report.json").is_file():
-            rep = json.loads((cal / "fit_report.json").read_text())
-            keys = [k for k, v in rep.items() if isinstance(v, (int, float, str)) and not isinstance(v, bool)]
-            if keys:
-                p.add("", "| fit_report.json | value |", "|---|---|")
-                p.add(*[f"| {k} | {rep[k]} |" for k in keys[:20]])
+            p.add(*calibration_lines(json.loads((cal / "fit_report.json").read_text()), paper_table4()))
+        else:
+            p.add("", f"`{rel(cal / 'sdel.json', root)}` exists without its fit_report.json: no fit details to show.")
         for f in sorted(cal.glob("*.png")):
             p.figure(f, f.stem.replace("_", " "))
     else:

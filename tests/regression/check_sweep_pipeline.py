@@ -9,7 +9,8 @@ reuses the sweep's runs at 31.75 mm, on data/macro_disc_afc_coarse.json with a 0
 a few seconds each). Checks: the table's residual velocities are those of each run's result.json; the
 comparison keeps the unmatched run and takes its statistics over the matched ones; the fit is physical
 and inside its bootstrap interval; a second `make sweep` runs nothing; the thickness study reuses the
-sweep's runs; the report page links only figures that exist and shows each run's provenance.
+sweep's runs; the report page links only figures that exist, shows each run's provenance and the SDEL
+fitted to the stored microcell ensemble (constants with standard errors beside Table 4, fit per size).
 """
 import argparse
 import csv
@@ -46,6 +47,11 @@ def main():
     check(done.returncode == 0, "make sweep thickness-study exits 0")
     if done.returncode:
         sys.exit(1)
+    # A calibration beside the runs (the stored ensemble, a fraction of a second) for the report's section.
+    done = subprocess.run([str(pathlib.Path(args.build) / "calibrate" / "uhpc-calibrate"), "--ensemble",
+                           str(src / "data" / "micro_analysis_ensemble_cells" / "ensemble_4x10.h5"),
+                           "--out", str(out / "calibrate" / "sdel.json")], env=env)
+    check(done.returncode == 0, "uhpc-calibrate on the stored ensemble exits 0")
     done = subprocess.run(make + ["report"], env=env)
     check(done.returncode == 0, "make report exits 0")
 
@@ -122,6 +128,11 @@ def main():
     check(len(links) >= 2, f"the page shows figures ({len(links)})")
     check(all((out / "report" / l).is_file() for l in links), "every figure the page links is in the folder")
     check("Not run: the seven shots (31.75 mm). Command: `make -C pipelines shots`" in page, "shots listed as not run")
+    fit = json.loads((out / "calibrate" / "fit_report.json").read_text())["sdel"]
+    check(f"| A | {fit['constants']['A']:.4g} | {fit['standard_errors']['A']:.3g} |" in page
+          and "| 0.0002 |" in page, "the calibration shows the fitted A with its standard error beside Table 4's")
+    check(all(f"| {1e3 * r['size_m']:.2f} | {r['lambda']:.4g} | {r['r_squared']:.4f} |" in page
+              for r in fit["per_size"]), "the calibration shows the fit of every cell size")
     for run_dir in list(sweep.glob("v*")) + list((out / "sweep" / "t0.025").glob("v*")):
         res = json.loads((run_dir / "result.json").read_text())
         check(res["provenance"]["config_hash"] in page, f"{run_dir.name}: config hash in the provenance")
