@@ -42,7 +42,7 @@ class Analysis {
         books_(o.energy_tolerance),
         steps_({o.opening_increment, o.min_opening_increment, o.max_opening_increment},
                {o.strain_increment, o.min_strain_increment, o.max_strain_increment}, o.step_growth),
-        zone_mode_(o.zone_control == ZoneControl::Always) {
+        zone_mode_(o.verification.zone_at_every_step) {
     law_.tensile_strength_Pa = material.tensile_strength_Pa;
     law_.fracture_energy_J_m2 = material.fracture_energy_J_m2;
     law_.activation_ratio = o.activation_ratio;
@@ -337,7 +337,7 @@ std::string Analysis::grow(int& iterations) {
       return fmt::format("re-equilibration after crack growth creates energy ({:.3g} of the largest work)",
                          created / books_.largest_work());
     };
-    if (o_.growth_fallback == GrowthFallback::AlwaysUnload) {
+    if (o_.verification.unload_at_every_growth) {
       if (const double created = excess_energy(); created > 0.0) return unreachable(created);
       unload_and_advance(ready, t);
       return "";
@@ -801,7 +801,7 @@ Analysis::StepEnd Analysis::path_step(int step) {
     next.jump_dissipated_J_m = books_.jump_dissipated();
     jump_reason_.clear();
     steps_.reset_openings();
-    zone_mode_ = o_.zone_control == ZoneControl::Always;
+    zone_mode_ = o_.verification.zone_at_every_step;
   }
   accept(next);
   return after_accepted(p, n.iterations);
@@ -811,7 +811,7 @@ Analysis::StepEnd Analysis::after_accepted(const StepPlan& p, int iterations) {
   const CellState& s = out_.states.back();
   if (iterations <= o_.easy_iterations) steps_.grow(p.hold);
   // Back to the global opening once it grows again.
-  if (p.zone && o_.zone_control != ZoneControl::Always && stage_.sys->opening_integral(d_) > p.opening_before)
+  if (p.zone && !o_.verification.zone_at_every_step && stage_.sys->opening_integral(d_) > p.opening_before)
     zone_mode_ = false;
   // Back on the envelope once some point dissipates beyond round-off.
   if (reloading_ && s.dissipated_J_m > reload_dissipated_ + dissipation_round_off()) reloading_ = false;

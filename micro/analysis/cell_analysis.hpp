@@ -70,19 +70,16 @@ enum class PathControl { CrackOpening, Displacement };
 // consistent (the unloading work is booked; growing at zero load costs nothing), and the strain-
 // controlled curve sees the reload like a snap-back excursion (energy_bridging.hpp, first passage).
 // Fail: the whole load step is undone and cut, and the cell fails at the smallest step.
-// AlwaysUnload: every growth event goes through the unloading (verification of that path: the
-// strip and one-pore tests must give the same peak, dissipation and energy balance).
 // Relax: the tips advance at the load they grew at and the cell settles there by the relaxation of
 // JumpFallback (the crack runs: a jump at fixed strain, its released energy booked the same way).
-enum class GrowthFallback { UnloadAndRegrow, Fail, AlwaysUnload, Relax };
+enum class GrowthFallback { UnloadAndRegrow, Fail, Relax };
 // [choice] Process-zone control (crack-opening path only). The global opening integral can pass a
 // maximum when points elsewhere unload faster than the process zone opens (a snap-back shared by
 // several cracks); the opening integral over the process zone alone (the cohesive points on their
 // softening envelope, short of w_c) still grows there. Fallback (default): when a crack-opening step
 // fails at the smallest increment, the path steps on the zone's opening until the global integral
-// grows again. Off: the cell fails there. Always: every step holds the zone's opening (verification:
-// the strip tests must give the same peak, dissipation and energy balance).
-enum class ZoneControl { Fallback, Off, Always };
+// grows again. Off: the cell fails there.
+enum class ZoneControl { Fallback, Off };
 // [choice] What the re-equilibration after crack growth holds once a crack softens (crack-opening
 // path; before, and under displacement control, it holds lambda). OldSegments (default): the opening
 // of the segments there were before the growth, the new ones open as equilibrium needs (they start
@@ -102,6 +99,14 @@ enum class GrowthHold { OldSegments, TotalOpening };
 // and must not be negative. Fail: the cell fails there (the former behaviour).
 enum class JumpFallback { Relax, Fail };
 enum class TipEnrichment { Ramped };  // [choice] crack_geometry.hpp; the only one implemented
+
+// Verification hooks, not modelling choices (no config key reaches them): each forces a rarely taken
+// path onto every step, so a test can check that it gives the plain path's answer
+// (tests/verification/test_micro_cohesive_strip.cpp: the same peak, dissipation and energy balance).
+struct CellAnalysisVerification {
+  bool unload_at_every_growth = false;  // every growth event through GrowthFallback::UnloadAndRegrow's unloading
+  bool zone_at_every_step = false;      // every crack-opening step on the process zone's opening
+};
 
 struct CellAnalysisOptions {
   RkGalerkinOptions rk;
@@ -146,6 +151,7 @@ struct CellAnalysisOptions {
   int max_steps = 3000;
   double max_strain = 0.01;
   double separation_fraction = 0.01;     // Separated once sigma_bar < this x peak after the peak
+  CellAnalysisVerification verification;
 };
 
 // Called after every accepted state (index 0: the unloaded cell); the signature of cell_analyzer.hpp's

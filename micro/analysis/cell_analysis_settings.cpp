@@ -58,11 +58,10 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
   opt(c, "growth.tolerance", o.growth_tolerance, Range::positive());
   opt(c, "growth.max_per_step", o.max_growth_per_step, Range::at_least(1));
   if (c.has("growth.fallback")) {
-    const std::string f = c.choice("growth.fallback", {"unload_and_regrow", "fail", "always_unload", "relax"});
-    o.growth_fallback = f == "fail"            ? GrowthFallback::Fail
-                        : f == "always_unload" ? GrowthFallback::AlwaysUnload
-                        : f == "relax"         ? GrowthFallback::Relax
-                                               : GrowthFallback::UnloadAndRegrow;
+    const std::string f = c.choice("growth.fallback", {"unload_and_regrow", "fail", "relax"});
+    o.growth_fallback = f == "fail"    ? GrowthFallback::Fail
+                        : f == "relax" ? GrowthFallback::Relax
+                                       : GrowthFallback::UnloadAndRegrow;
   }
   if (c.has("growth.field_transfer"))
     o.field_transfer = c.choice("growth.field_transfer", {"project", "carry"}) == "carry" ? FieldTransfer::Carry
@@ -76,8 +75,7 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
                     ? PathControl::Displacement
                     : PathControl::CrackOpening;
   if (c.has("path.zone_control")) {
-    const std::string z = c.choice("path.zone_control", {"fallback", "off", "always"});
-    o.zone_control = z == "off" ? ZoneControl::Off : z == "always" ? ZoneControl::Always : ZoneControl::Fallback;
+    o.zone_control = c.choice("path.zone_control", {"fallback", "off"}) == "off" ? ZoneControl::Off : ZoneControl::Fallback;
   }
   opt(c, "path.energy_tolerance", o.energy_tolerance, Range::positive());
   if (c.has("path.jump"))

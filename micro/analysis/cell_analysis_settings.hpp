@@ -19,7 +19,7 @@
 //   path.min_strain_increment, path.max_strain_increment, path.step_growth, path.easy_iterations,
 //   path.max_steps, path.max_strain (default: curve_end_strain when given, else the solver's own; never
 //   below curve_end_strain), path.separation_fraction,  growth.fallback ("unload_and_regrow" | "fail" |
-//   "always_unload"),
+//   "relax"), growth.field_transfer, growth.hold, path.zone_control ("fallback" | "off"),
 //   newton.max_iterations, newton.line_search_halvings, newton.tolerance.
 #include <optional>
 

@@ -142,16 +142,16 @@ void check_straight_strip(const CellAnalysisOptions& o) {
   }
   // Damage grows monotonically on the softening branch.
   EXPECT_TRUE(cracked);
-  if (o.growth_fallback == GrowthFallback::AlwaysUnload) {
+  if (o.verification.unload_at_every_growth) {
     EXPECT_GT(r.growth_unloads, 5u);
   }
 }
 
-// Every step on the process zone's opening (ZoneControl::Always; the default uses it only where the
-// global opening integral folds): the same peak, dissipation and energy balance.
+// Every step on the process zone's opening (the test hook zone_at_every_step; the default uses it only
+// where the global opening integral folds): the same peak, dissipation and energy balance.
 TEST(microCohesiveStrip, ProcessZoneControlGivesTheSameAnswer) {
   CellAnalysisOptions o;
-  o.zone_control = ZoneControl::Always;
+  o.verification.zone_at_every_step = true;
   check_straight_strip(o);
 }
 
@@ -169,7 +169,7 @@ TEST(microCohesiveStrip, StraightCrackWithCrackedVciGivesTheSameAnswer) {
 // dissipation and energy balance, so the fallback that rescues porous cells is consistent.
 TEST(microCohesiveStrip, GrowingAtZeroLoadGivesTheSameAnswer) {
   CellAnalysisOptions o;
-  o.growth_fallback = GrowthFallback::AlwaysUnload;
+  o.verification.unload_at_every_growth = true;
   check_straight_strip(o);
 }
 
@@ -226,7 +226,7 @@ TEST(microCohesiveStrip, LongStripSnapsBackAndSeparates) { check_long_strip(Cell
 
 TEST(microCohesiveStrip, LongStripOnTheProcessZoneOpeningSnapsBackAlike) {
   CellAnalysisOptions o;
-  o.zone_control = ZoneControl::Always;
+  o.verification.zone_at_every_step = true;
   check_long_strip(o);
 }
 
@@ -325,7 +325,7 @@ CellResponse check_one_pore(const CellAnalysisOptions& o) {
   // Two straight cracks across the ligaments: G_f x (L - D) dissipated, and the energies balance.
   EXPECT_NEAR(r.states.back().dissipated_J_m / (m.fracture_energy_J_m2 * (L - D)), 1.0, 0.02);
   EXPECT_LT(final_error, 0.01);
-  if (o.growth_fallback != GrowthFallback::AlwaysUnload) {
+  if (!o.verification.unload_at_every_growth) {
     EXPECT_LT(worst, 0.01);
   } else {
     // Measured 1.3e-2 (plain path 5.6e-3): each unload books -1/2 F lambda, the operator's energy,
@@ -342,7 +342,7 @@ TEST(microCohesiveStrip, SeedsOfOnePoreGrowNormalToTheLoadAndSeparate) { check_o
 
 TEST(microCohesiveStrip, SeedsOfOnePoreGrowingAtZeroLoadGiveTheSameAnswer) {
   CellAnalysisOptions o;
-  o.growth_fallback = GrowthFallback::AlwaysUnload;
+  o.verification.unload_at_every_growth = true;
   const double peak = peak_stress(check_one_pore(o));
   EXPECT_NEAR(peak / peak_stress(check_one_pore(CellAnalysisOptions{})), 1.0, 0.01);
 }
