@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "cohesive_assembly.hpp"
+#include "crack_stage.hpp"
 #include "field_transfer.hpp"
 #include "path_steps.hpp"
 #include "bordered_tangent_solver.hpp"
@@ -19,13 +20,22 @@ namespace uhpc::micro {
 
 namespace {
 
-// One crack geometry: the enriched model and its system (the system refers to the model).
-struct Stage {
-  std::unique_ptr<EnrichedModel> em;
-  std::unique_ptr<FractureSystem> sys;
-  std::vector<Crack> cracks;  // what em was built on
-};
+CohesiveLaw cohesive_law(const CellMaterial& material, const CellAnalysisOptions& o) {
+  CohesiveLaw law;
+  law.tensile_strength_Pa = material.tensile_strength_Pa;
+  law.fracture_energy_J_m2 = material.fracture_energy_J_m2;
+  law.activation_ratio = o.activation_ratio;
+  law.contact_penalty_ratio = o.contact_penalty_ratio;
+  law.residual_stiffness_ratio = o.residual_stiffness_ratio;
+  law.mode = o.mode;
+  return law;
+}
 
+std::vector<std::array<double, 2>> constraint_points(const ElasticProblem& unit) {
+  std::vector<std::array<double, 2>> x;
+  for (const PointConstraint& c : unit.points) x.push_back(c.x_m);
+  return x;
+}
 
 struct NewtonResult {
   bool ok = false;
@@ -37,30 +47,25 @@ class Analysis {
  public:
   Analysis(const CellGeometry& cell, const CellDiscretization& mesh, const CellMaterial& material,
            const CellAnalysisOptions& o)
-      : cell_(cell), mesh_(mesh), o_(o),
+      : cell_(cell),
+        mesh_(mesh),
+        o_(o),
+        law_(cohesive_law(material, o)),
+        elastic_(material.elastic),
+        axis_(cell.load == LoadAxis::X ? 0 : 1),
+        far_(axis_ == 0 ? BoundaryPart::Right : BoundaryPart::Top),
+        unit_(uniaxial_problem(cell.side_m, cell.load, 1.0 / cell.side_m, elastic_, o.nitsche_factor)),
+        base_(build_rk_galerkin_model(mesh, o.rk)),
+        stage_(base_, mesh, unit_, far_, axis_, constraint_points(unit_), o.enrichment, o.field_transfer,
+               law_.activation_opening(), cracks_from_seeds(cell, mesh, o.growth)),
         tangent_(o.krylov_iterations),
         books_(o.energy_tolerance),
         steps_({o.opening_increment, o.min_opening_increment, o.max_opening_increment},
                {o.strain_increment, o.min_strain_increment, o.max_strain_increment}, o.step_growth),
-        zone_mode_(o.verification.zone_at_every_step) {
-    law_.tensile_strength_Pa = material.tensile_strength_Pa;
-    law_.fracture_energy_J_m2 = material.fracture_energy_J_m2;
-    law_.activation_ratio = o.activation_ratio;
-    law_.contact_penalty_ratio = o.contact_penalty_ratio;
-    law_.residual_stiffness_ratio = o.residual_stiffness_ratio;
-    law_.mode = o.mode;
-    elastic_ = material.elastic;
-    axis_ = cell.load == LoadAxis::X ? 0 : 1;
-    far_ = axis_ == 0 ? BoundaryPart::Right : BoundaryPart::Top;
-    unit_ = uniaxial_problem(cell.side_m, cell.load, 1.0 / cell.side_m, elastic_, o.nitsche_factor);
-    for (const PointConstraint& c : unit_.points) constraint_points_.push_back(c.x_m);
-    base_ = build_rk_galerkin_model(mesh, o.rk);
-    cracks_ = cracks_from_seeds(cell, mesh, o.growth);
-    history_.resize(cracks_.size());
-  }
+        zone_mode_(o.verification.zone_at_every_step) {}
 
   CellResponse run(const FractureObserver& observer);
-  const std::vector<Crack>& cracks() const { return cracks_; }
+  const std::vector<Crack>& cracks() const { return stage_.cracks(); }
 
  private:
   const CellGeometry& cell_;
@@ -71,12 +76,8 @@ class Analysis {
   int axis_ = 0;
   BoundaryPart far_ = BoundaryPart::Right;
   ElasticProblem unit_;
-  std::vector<std::array<double, 2>> constraint_points_;
   RkGalerkinModel base_;
-  std::vector<Crack> cracks_;
-  std::vector<std::vector<CohesiveHistory>> history_;  // per crack: segment x Gauss point
-  Stage stage_;
-  long stage_id_ = 0;
+  CrackStage stage_;
   BorderedTangentSolver tangent_;
   Eigen::VectorXd d_;
   double lambda_ = 0.0;
@@ -112,60 +113,24 @@ class Analysis {
   // Selects the cohesive points of the segments active in `before` (growth re-equilibration).
   bool select_old_segments(const std::vector<Crack>& before);
 
-  int gauss() const { return o_.enrichment.crack_points; }
-
   // The enriched model and system of the current cracks; with `keep_field`, d is transferred so the
   // displacement field stays what it was (field_transfer.hpp), else it is zero.
-  void build_stage(bool keep_field = true) {
-    Stage s;
-    s.em = std::make_unique<EnrichedModel>(build_enriched_model(base_, mesh_, cracks_, constraint_points_, o_.enrichment));
-    s.sys = std::make_unique<FractureSystem>(base_, *s.em, unit_, far_, axis_);
-    s.cracks = cracks_;
-    Eigen::VectorXd d = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.em->dof_count()));
-    if (stage_.em && keep_field) d = transfer_field(base_, *stage_.em, stage_.cracks, d_, *s.em, o_.field_transfer);
-    d_ = d;
-    stage_ = std::move(s);
-    ++stage_id_;
-    for (std::size_t c = 0; c < cracks_.size(); ++c)
-      history_[c].resize(cracks_[c].active * static_cast<std::size_t>(gauss()), CohesiveHistory{law_.activation_opening(), 0.0, 0.0});
-  }
-
-  std::vector<CohesiveHistory> flat_history() const {
-    std::vector<CohesiveHistory> h;
-    h.reserve(stage_.em->cohesive.size());
-    for (const CohesivePoint& p : stage_.em->cohesive) h.push_back(history_[p.crack][p.segment * gauss() + p.gauss]);
-    return h;
-  }
-  void commit(const std::vector<CohesiveHistory>& trial) {
-    for (std::size_t i = 0; i < trial.size(); ++i) {
-      const CohesivePoint& p = stage_.em->cohesive[i];
-      history_[p.crack][p.segment * gauss() + p.gauss] = trial[i];
-    }
-  }
-
-  bool softening() const {
-    for (const auto& h : history_)
-      for (const CohesiveHistory& x : h)
-        if (x.kappa > law_.activation_opening() * (1.0 + 1e-9)) return true;
-    return false;
-  }
+  void build_stage(bool keep_field = true) { d_ = stage_.rebuild(d_, keep_field); }
+  std::vector<CohesiveHistory> flat_history() const { return stage_.flat_history(); }
+  void commit(const std::vector<CohesiveHistory>& trial) { stage_.commit(trial); }
+  double active_length() const { return stage_.active_length(); }
 
   // Energy dissipated per unit thickness by the cohesive points in `flat` (flat_history() order).
   double dissipated(const std::vector<CohesiveHistory>& flat) const {
     double sum = 0.0;
     for (std::size_t p = 0; p < flat.size(); ++p)
-      sum += stage_.em->cohesive[p].weight * (law_.dissipated(flat[p].kappa) + flat[p].shear_dissipated);
+      sum += stage_.model().cohesive[p].weight * (law_.dissipated(flat[p].kappa) + flat[p].shear_dissipated);
     return sum;
   }
 
   // Dissipation below this is round-off (a point at its kappa to the last digit), not loading.
   double dissipation_round_off() const { return 1e-9 * law_.fracture_energy_J_m2 * active_length(); }
 
-  double active_length() const {
-    double l = 0.0;
-    for (const Crack& c : cracks_) l += c.active_length();
-    return l;
-  }
 
   // Newton at the constraint `hold` = target; with `viscosity`, the relaxation's pseudo-time step.
   NewtonResult newton(Hold hold, double target, std::vector<CohesiveHistory>& trial,
@@ -174,16 +139,14 @@ class Analysis {
   // the pseudo-time relaxation there (see cell_analysis.hpp). Returns "" or a diagnostic.
   std::string relax(double dlambda, int& iterations);
   struct Snapshot {
-    std::vector<Crack> cracks;
-    std::vector<std::vector<CohesiveHistory>> history;
+    CrackStage::Saved cracks;
     Eigen::VectorXd d;
     double lambda;
   };
-  Snapshot snapshot() const { return {cracks_, history_, d_, lambda_}; }
+  Snapshot snapshot() const { return {stage_.save(), d_, lambda_}; }
   // Back to a snapshot; `rebuild` when the crack geometry may have changed since.
   void restore(const Snapshot& s, bool rebuild) {
-    cracks_ = s.cracks;
-    history_ = s.history;
+    stage_.restore(s.cracks);
     if (rebuild) build_stage(false);
     d_ = s.d;
     lambda_ = s.lambda;
@@ -241,7 +204,7 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
                               const OpeningViscosity* viscosity) {
   NewtonResult res;
   const std::vector<CohesiveHistory> committed = flat_history();
-  FractureSystem& sys = *stage_.sys;
+  FractureSystem& sys = stage_.system();
   const Eigen::VectorXd g = hold == Hold::Zone ? sys.opening_gradient(zone_) : sys.opening_gradient();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(g.size());
   const auto N = static_cast<Eigen::Index>(sys.dofs());
@@ -281,9 +244,9 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
     if (it == o_.max_iterations) break;
     // The pattern is fixed per stage and constraint: the ordering and symbolic analysis are reused.
     // (A zone's row has its own pattern: a new analysis per zone.)
-    const long key = viscosity          ? -(1L << 40) - stage_id_
+    const long key = viscosity          ? -(1L << 40) - stage_.id()
                      : hold == Hold::Zone ? -2 - zone_id_
-                                          : 2 * stage_id_ + (hold == Hold::Lambda ? 0 : 1);
+                                          : 2 * stage_.id() + (hold == Hold::Lambda ? 0 : 1);
     // The constraint row is scaled so that its tolerance is the residual's (GMRES minimizes one norm
     // over both).
     const auto assemble = [&](double row_scale) {
@@ -312,14 +275,14 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
 }
 
 std::vector<TipCriterion> Analysis::criteria() {
-  const TipSamples s = tip_samples(cell_, mesh_, cracks_, o_.growth);
+  const TipSamples s = tip_samples(cell_, mesh_, stage_.cracks(), o_.growth);
   std::vector<std::array<double, 3>> stress(s.crack.size());
   if (!s.crack.empty()) {
-    const GeneralTable t = enriched_table_at(base_, *stage_.em, cracks_, s.x);
+    const GeneralTable t = enriched_table_at(base_, stage_.model(), stage_.cracks(), s.x);
     const std::array<double, 9> D = elastic_.D();
     for (std::size_t p = 0; p < t.size(); ++p) stress[p] = apply_D(D, t.strain(p, d_));
   }
-  return tip_criteria(cracks_, s, stress);
+  return tip_criteria(stage_.cracks(), s, stress);
 }
 
 std::string Analysis::grow(int& iterations) {
@@ -327,7 +290,7 @@ std::string Analysis::grow(int& iterations) {
   for (int round = 0; round < o_.max_growth_per_step; ++round) {
     const std::vector<TipCriterion> t = criteria();
     std::vector<std::size_t> ready;
-    for (std::size_t c = 0; c < cracks_.size(); ++c)
+    for (std::size_t c = 0; c < stage_.cracks().size(); ++c)
       if (t[c].valid && t[c].stress_Pa >= law_.tensile_strength_Pa * (1.0 - 1e-9)) ready.push_back(c);
     if (ready.empty()) return "";
     std::stable_sort(ready.begin(), ready.end(), [&](std::size_t a, std::size_t b) { return t[a].stress_Pa > t[b].stress_Pa; });
@@ -353,7 +316,7 @@ std::string Analysis::grow(int& iterations) {
       }
       bool grew = false;
       for (std::size_t k = 0; k < (attempt == 0 ? ready.size() : 1); ++k)
-        grew = advance_crack(cracks_, ready[k], t[ready[k]].direction, cell_, mesh_, o_.growth) || grew;
+        grew = advance_crack(stage_.cracks(), ready[k], t[ready[k]].direction, cell_, mesh_, o_.growth) || grew;
       if (!grew) {
         if (attempt == 0) return "";
         break;
@@ -363,11 +326,11 @@ std::string Analysis::grow(int& iterations) {
       // new segments sit on their stiff activation branch), at the same crack opening afterwards (on
       // the softening branch a fixed displacement may have no nearby equilibrium): by default that of
       // the segments there were before, as a Hold::Zone of them (GrowthHold, cell_analysis.hpp).
-      const bool opening = o_.control == PathControl::CrackOpening && softening();
-      const bool old_only = opening && o_.growth_hold == GrowthHold::OldSegments && select_old_segments(before.cracks);
+      const bool opening = o_.control == PathControl::CrackOpening && stage_.softening();
+      const bool old_only = opening && o_.growth_hold == GrowthHold::OldSegments && select_old_segments(before.cracks.cracks);
       const Hold hold = old_only ? Hold::Zone : opening ? Hold::Opening : Hold::Lambda;
-      const double target = old_only  ? stage_.sys->opening_gradient(zone_).dot(d_)
-                            : opening ? stage_.sys->opening_integral(d_)
+      const double target = old_only  ? stage_.system().opening_gradient(zone_).dot(d_)
+                            : opening ? stage_.system().opening_integral(d_)
                                       : lambda_;
       const Eigen::VectorXd d0 = d_;
       const double l0 = lambda_;
@@ -401,7 +364,7 @@ std::string Analysis::grow(int& iterations) {
       if (o_.growth_fallback == GrowthFallback::Relax) {
         // The grown crack has no equilibrium near this one: it runs (a jump at this strain).
         const double start = current_imbalance();
-        for (const std::size_t c : ready) advance_crack(cracks_, c, t[c].direction, cell_, mesh_, o_.growth);
+        for (const std::size_t c : ready) advance_crack(stage_.cracks(), c, t[c].direction, cell_, mesh_, o_.growth);
         build_stage();
         if (const std::string r = relax(0.0, iterations); !r.empty()) {
           restore(before, true);
@@ -429,7 +392,7 @@ void Analysis::scale_to_envelope() {
   // reaches its kappa or some tip reaches f_t; all of those are linear in the scale.
   Eigen::VectorXd r;
   const std::vector<CohesiveHistory> h = flat_history();
-  stage_.sys->evaluate(d_, lambda_, law_, h, false, r, eval_);
+  stage_.system().evaluate(d_, lambda_, law_, h, false, r, eval_);
   double ratio = max_ratio(criteria());
   for (std::size_t p = 0; p < h.size(); ++p) {
     const double wn = std::max(eval_.opening[p][0], 0.0), wt = eval_.opening[p][1];
@@ -456,7 +419,7 @@ std::string Analysis::relax(double dlambda, int& iterations) {
   const double target = lambda_ + dlambda;
   double kv = o_.relaxation_ratio * softening;
   Eigen::VectorXd r;
-  stage_.sys->evaluate(d_, lambda_, law_, flat_history(), false, r, eval_);
+  stage_.system().evaluate(d_, lambda_, law_, flat_history(), false, r, eval_);
   std::vector<std::array<double, 2>> reference = eval_.opening;
   for (int k = 0; k < o_.max_relaxation_steps; ++k) {
     const OpeningViscosity viscosity{kv, &reference};
@@ -491,8 +454,8 @@ std::string Analysis::relax(double dlambda, int& iterations) {
     // 2000 steps). So the viscous forces of the step, k_v (w - w_previous) assembled, are also
     // compared with the tolerance: below kViscousFraction of it, the step moved by noise.
     Eigen::VectorXd rv;
-    stage_.sys->evaluate(d_, lambda_, law_, settled_history, false, rv, eval_, &viscosity);
-    stage_.sys->evaluate(d_, lambda_, law_, settled_history, false, r, eval_);
+    stage_.system().evaluate(d_, lambda_, law_, settled_history, false, rv, eval_, &viscosity);
+    stage_.system().evaluate(d_, lambda_, law_, settled_history, false, r, eval_);
     const double viscous = (rv - r).norm();
     reference = eval_.opening;
     if (n.iterations <= o_.easy_iterations) kv = std::max(kv / o_.step_growth, 1e-2 * softening);
@@ -506,12 +469,12 @@ void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const s
   // Secant unloading is linear and path independent (every point's traction is S(kappa) [[u]], or
   // the contact penalty), so d = 0 at lambda = 0 is the exact unloaded state and the work of the
   // unloading is -1/2 F lambda; the trapezoid to here books the step that reached this state.
-  const double F = stage_.sys->reaction(d_, lambda_);
+  const double F = stage_.system().reaction(d_, lambda_);
   unload_strain_ = lambda_ / cell_.side_m;
   books_.book_unload(lambda_, F, dissipated(flat_history()));
   d_.setZero();
   lambda_ = 0.0;
-  for (const std::size_t c : ready) advance_crack(cracks_, c, t[c].direction, cell_, mesh_, o_.growth);
+  for (const std::size_t c : ready) advance_crack(stage_.cracks(), c, t[c].direction, cell_, mesh_, o_.growth);
   build_stage();  // the new segments start at zero opening: equilibrium holds exactly
   ++unloads_;
   unloaded_ = true;
@@ -521,10 +484,10 @@ void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const s
 }
 
 bool Analysis::select_old_segments(const std::vector<Crack>& before) {
-  zone_.assign(stage_.em->cohesive.size(), 0);
+  zone_.assign(stage_.model().cohesive.size(), 0);
   zone_length_ = 0.0;
   for (std::size_t p = 0; p < zone_.size(); ++p) {
-    const CohesivePoint& q = stage_.em->cohesive[p];
+    const CohesivePoint& q = stage_.model().cohesive[p];
     if (static_cast<std::size_t>(q.segment) < before[static_cast<std::size_t>(q.crack)].active) {
       zone_[p] = 1;
       zone_length_ += q.weight;
@@ -539,7 +502,7 @@ bool Analysis::select_zone() {
   // the point is traction-free and opens freely; holding it would hold nothing).
   Eigen::VectorXd r;
   const std::vector<CohesiveHistory> h = flat_history();
-  stage_.sys->evaluate(d_, lambda_, law_, h, false, r, eval_);
+  stage_.system().evaluate(d_, lambda_, law_, h, false, r, eval_);
   zone_.assign(h.size(), 0);
   zone_length_ = 0.0;
   for (std::size_t p = 0; p < h.size(); ++p) {
@@ -547,7 +510,7 @@ bool Analysis::select_zone() {
     const double weff = law_.mode == CohesiveMode::ModeI ? wn : std::hypot(wn, wt);
     if (weff >= (1.0 - 1e-6) * h[p].kappa && h[p].kappa < law_.critical_opening()) {
       zone_[p] = 1;
-      zone_length_ += stage_.em->cohesive[p].weight;
+      zone_length_ += stage_.model().cohesive[p].weight;
     }
   }
   ++zone_id_;
@@ -556,7 +519,7 @@ bool Analysis::select_zone() {
 
 CellState Analysis::state(int iterations) {
   CellState s;
-  FractureSystem& sys = *stage_.sys;
+  FractureSystem& sys = stage_.system();
   const std::vector<CohesiveHistory> h = flat_history();
   Eigen::VectorXd r;
   sys.evaluate(d_, lambda_, law_, h, false, r, eval_);
@@ -567,7 +530,7 @@ CellState Analysis::state(int iterations) {
   const double stored = s.bulk_energy_J_m + sys.boundary_energy(d_, lambda_);
   double coh = 0.0, wmax = 0.0;
   for (std::size_t p = 0; p < h.size(); ++p) {
-    const double w = stage_.em->cohesive[p].weight;
+    const double w = stage_.model().cohesive[p].weight;
     coh += 0.5 * w * (eval_.traction[p][0] * eval_.opening[p][0] + eval_.traction[p][1] * eval_.opening[p][1]);
     wmax = std::max(wmax, eval_.opening[p][0]);
   }
@@ -577,15 +540,8 @@ CellState Analysis::state(int iterations) {
   s.external_work_J_m = books_.book_work(lambda_, F);
   if (books_.largest_work() > 0.0) books_.note_operator_mismatch(std::abs(sys.operator_energy(d_, lambda_) - stored));
   s.max_opening_m = wmax;
-  for (std::size_t c = 0; c < cracks_.size(); ++c) {
-    s.crack_segments += cracks_[c].active;
-    for (std::size_t g = 0; g < cracks_[c].active; ++g) {
-      bool open = false;
-      for (int q = 0; q < gauss(); ++q)
-        open = open || history_[c][g * gauss() + q].kappa > law_.activation_opening() * (1.0 + 1e-9);
-      s.open_segments += open ? 1 : 0;
-    }
-  }
+  for (const Crack& c : stage_.cracks()) s.crack_segments += c.active;
+  s.open_segments = stage_.open_segments();
   s.newton_iterations = iterations;
   return s;
 }
@@ -603,8 +559,8 @@ CellResponse Analysis::run(const FractureObserver& observer) {
       if (path_step(step) == StepEnd::Stop) break;
     if (out_.status == CellStatus::StepLimit && out_.diagnostic.empty()) out_.diagnostic = "reached max_steps";
   }
-  out_.dofs = stage_.em->dof_count();
-  out_.enriched_nodes = stage_.em->enriched_node.size();
+  out_.dofs = stage_.model().dof_count();
+  out_.enriched_nodes = stage_.model().enriched_node.size();
   out_.growth_unloads = unloads_;
   out_.jumps = books_.jumps();
   out_.factorizations = tangent_.factorizations();
@@ -628,7 +584,7 @@ void Analysis::accept(const CellState& s) {
 bool Analysis::elastic_branch() {
   // The response is linear until the first tip reaches f_t: one solve, K d1 = f_unit at lambda = 1,
   // and the states there are its multiples.
-  FractureSystem& sys = *stage_.sys;
+  FractureSystem& sys = stage_.system();
   const auto N = static_cast<Eigen::Index>(sys.dofs());
   Eigen::VectorXd r;
   sys.evaluate(Eigen::VectorXd::Zero(N), 0.0, law_, {}, true, r, eval_);
@@ -684,10 +640,10 @@ Analysis::StepPlan Analysis::plan_step() {
   p.opening = !p.jump && !p.reload && o_.control == PathControl::CrackOpening && active_length() > 0.0;
   p.zone = p.opening && zone_mode_ && select_zone();
   p.hold = p.zone ? Hold::Zone : p.opening ? Hold::Opening : Hold::Lambda;
-  p.opening_before = stage_.sys->opening_integral(d_);
+  p.opening_before = stage_.system().opening_integral(d_);
   const double step = steps_.size(p.hold);
   p.target = p.reload    ? reload_lambda_
-             : p.zone    ? stage_.sys->opening_gradient(zone_).dot(d_) + step * law_.critical_opening() * zone_length_
+             : p.zone    ? stage_.system().opening_gradient(zone_).dot(d_) + step * law_.critical_opening() * zone_length_
              : p.opening ? p.opening_before + step * law_.critical_opening() * active_length()
                          : lambda_ + step * cell_.side_m;
   return p;
@@ -723,7 +679,7 @@ Analysis::StepEnd Analysis::retry(const StepPlan& p, const Snapshot& start, cons
 bool Analysis::in_compression() const {
   // The tension path stays at lambda >= 0 and F >= 0 (a snap-back tends to the origin); past it lies a
   // spurious branch where contact closes the cell around a still-opening process zone.
-  return lambda_ < 0.0 || stage_.sys->reaction(d_, lambda_) < 0.0;
+  return lambda_ < 0.0 || stage_.system().reaction(d_, lambda_) < 0.0;
 }
 
 Analysis::StepEnd Analysis::path_step(int step) {
@@ -811,7 +767,7 @@ Analysis::StepEnd Analysis::after_accepted(const StepPlan& p, int iterations) {
   const CellState& s = out_.states.back();
   if (iterations <= o_.easy_iterations) steps_.grow(p.hold);
   // Back to the global opening once it grows again.
-  if (p.zone && !o_.verification.zone_at_every_step && stage_.sys->opening_integral(d_) > p.opening_before)
+  if (p.zone && !o_.verification.zone_at_every_step && stage_.system().opening_integral(d_) > p.opening_before)
     zone_mode_ = false;
   // Back on the envelope once some point dissipates beyond round-off.
   if (reloading_ && s.dissipated_J_m > reload_dissipated_ + dissipation_round_off()) reloading_ = false;

@@ -2,40 +2,16 @@
 // correction solves the bordered system it was asked for, whichever way it went (a fresh LU, GMRES
 // preconditioned with an older one, or the reused tangent at the start of a path step), and
 // factorizations are spent only where the solver says they are.
-#include <random>
-
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
 #include "bordered_tangent_solver.hpp"
+#include "sparse_test_matrices.hpp"
 
 namespace uhpc::micro {
 namespace {
 
-// A non-symmetric, diagonally dominant five-point operator on an n x n grid: the "bulk" K_T.
-Eigen::SparseMatrix<double> bulk(int n) {
-  std::vector<Eigen::Triplet<double>> t;
-  const auto id = [n](int i, int j) { return i * n + j; };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      t.emplace_back(id(i, j), id(i, j), 4.5);
-      if (i > 0) t.emplace_back(id(i, j), id(i - 1, j), -1.3);
-      if (i < n - 1) t.emplace_back(id(i, j), id(i + 1, j), -0.7);
-      if (j > 0) t.emplace_back(id(i, j), id(i, j - 1), -1.1);
-      if (j < n - 1) t.emplace_back(id(i, j), id(i, j + 1), -0.9);
-    }
-  Eigen::SparseMatrix<double> K(n * n, n * n);
-  K.setFromTriplets(t.begin(), t.end());
-  return K;
-}
-
-Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd v(n);
-  for (Eigen::Index i = 0; i < n; ++i) v[i] = u(rng);
-  return v;
-}
+using test::random_vector;
 
 // [[K, -f], [s g^T, s c]] as FractureSystem::bordered builds it.
 Eigen::SparseMatrix<double> bordered(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
@@ -65,7 +41,7 @@ double system_residual(const Eigen::SparseMatrix<double>& K, const Eigen::Vector
 }
 
 struct Problem {
-  Eigen::SparseMatrix<double> K = bulk(12);  // 144 unknowns
+  Eigen::SparseMatrix<double> K = test::convection_diffusion(12);  // the "bulk" K_T  // 144 unknowns
   Eigen::VectorXd f = random_vector(144, 1), g = random_vector(144, 2), r = random_vector(144, 3);
   double c = 0.0;  // an opening hold
   double cres = 0.25;

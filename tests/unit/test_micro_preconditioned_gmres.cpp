@@ -2,40 +2,17 @@
 // solver relies on: with the exact factorization of a matrix M as preconditioner, A = M + (rank k)
 // is solved in at most k + 1 iterations; unpreconditioned, a diagonal matrix with m distinct entries
 // takes exactly m; the residual it reports is the true one, also when it stops unconverged.
-#include <random>
-
 #include <Eigen/SparseLU>
 #include <gtest/gtest.h>
 
 #include "preconditioned_gmres.hpp"
+#include "sparse_test_matrices.hpp"
 
 namespace uhpc::micro {
 namespace {
 
-// A non-symmetric, diagonally dominant 2D five-point operator on an n x n grid (n^2 unknowns).
-Eigen::SparseMatrix<double> convection_diffusion(int n) {
-  std::vector<Eigen::Triplet<double>> t;
-  const auto id = [n](int i, int j) { return i * n + j; };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      t.emplace_back(id(i, j), id(i, j), 4.5);
-      if (i > 0) t.emplace_back(id(i, j), id(i - 1, j), -1.3);
-      if (i < n - 1) t.emplace_back(id(i, j), id(i + 1, j), -0.7);
-      if (j > 0) t.emplace_back(id(i, j), id(i, j - 1), -1.1);
-      if (j < n - 1) t.emplace_back(id(i, j), id(i, j + 1), -0.9);
-    }
-  Eigen::SparseMatrix<double> A(n * n, n * n);
-  A.setFromTriplets(t.begin(), t.end());
-  return A;
-}
-
-Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::VectorXd v(n);
-  for (Eigen::Index i = 0; i < n; ++i) v[i] = u(rng);
-  return v;
-}
+using test::convection_diffusion;
+using test::random_vector;
 
 TEST(microPreconditionedGmres, ExactPreconditionerOfALowRankChangeConvergesInRankPlusOne) {
   const Eigen::SparseMatrix<double> M = convection_diffusion(20);  // 400 unknowns
