@@ -3,17 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <memory>
 
 #include <Eigen/UmfPackSupport>
 #include <fmt/format.h>
 
+#include "bordered_tangent_solver.hpp"
 #include "cohesive_assembly.hpp"
 #include "crack_stage.hpp"
-#include "field_transfer.hpp"
-#include "path_steps.hpp"
-#include "bordered_tangent_solver.hpp"
 #include "energy_books.hpp"
+#include "path_steps.hpp"
 #include "uniaxial_cell.hpp"
 
 namespace uhpc::micro {
