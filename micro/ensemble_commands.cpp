@@ -30,6 +30,7 @@
 #include "uhpc/errors.hpp"
 #include "uhpc/hash.hpp"
 #include "uhpc/progress.hpp"
+#include "uhpc/resources.hpp"
 
 namespace fs = std::filesystem;
 
@@ -261,13 +262,14 @@ SizeSummary summarize_size(const AnalysisEnsembleSettings& e, const std::vector<
                            const fs::path& out) {
   SizeSummary z;
   std::vector<const ResampledCurve*> used;
-  std::vector<double> peaks, e50, E0, dissipated;
+  std::vector<double> peaks, e50, E0, dissipated, walls;
   double bridging_max = 0.0;
   nlohmann::json failures = nlohmann::json::array(), suspects = nlohmann::json::array(), seeds = nlohmann::json::array();
   for (std::size_t r = 0; r < e.realizations; ++r) {
     const CellOutcome& o = outcomes[i * e.realizations + r];
     const CellResult& res = o.result;
     seeds.push_back(o.job.seed);
+    if (res.response.wall_s > 0.0) walls.push_back(res.response.wall_s);  // as measured when it ran
     if (res.reloaded) ++z.reloaded;
     if (res.response.status == CellStatus::Failed) {
       ++z.failed;
@@ -318,6 +320,7 @@ SizeSummary summarize_size(const AnalysisEnsembleSettings& e, const std::vector<
             {"E0_bar_Pa", spread_json(E0)},
             {"dissipated_energy_density_J_m3", spread_json(dissipated)},
             {"bridging_max_abs_difference", bridging_max},
+            {"cell_wall_s", spread_json(walls)},
             {"seeds", seeds},
             {"failures", failures},
             {"suspects", suspects}};
@@ -431,6 +434,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
       {"post_options", post_options_json(e.post)},
       {"sizes", sizes},
       {"wall_s", wall_s},
+      {"peak_memory_MiB", peak_memory_MiB()},
       {"provenance", provenance.to_json()}};
   write_text_atomic(out / "summary.json", summary.dump(2) + "\n");
   std::printf("%zu cells (%zu reloaded), %zu failed, %zu incomplete, %zu suspect, in %.1f s\n", total, reloaded_total,

@@ -1,6 +1,5 @@
 #include "macro_run.hpp"
 
-#include <sys/resource.h>
 
 #include <chrono>
 #include <cmath>
@@ -21,6 +20,7 @@
 #include "uhpc/errors.hpp"
 #include "uhpc/progress.hpp"
 #include "uhpc/provenance.hpp"
+#include "uhpc/resources.hpp"
 #include "uhpc/sdel_handoff.hpp"
 
 namespace fs = std::filesystem;
@@ -28,13 +28,6 @@ namespace fs = std::filesystem;
 namespace uhpc::macro {
 
 namespace {
-
-// The process's peak resident set so far (getrusage: kB on Linux).
-double peak_memory_MB() {
-  struct rusage usage {};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
 
 nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact, const BalanceTracker& balance,
                            const std::string& model, double wall_s, const Provenance& provenance,
@@ -61,7 +54,7 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
       {"step_repeats", s.step_repeats()},
       {"field_outputs", field_steps},
       {"wall_time_s", wall_s},
-      {"peak_memory_MB", peak_memory_MB()},
+      {"peak_memory_MB", peak_memory_MiB()},  // (MiB; the key predates the unit)
       {"particle_steps_per_s", wall_s > 0 ? static_cast<double>(s.particles().n) * static_cast<double>(s.steps()) / wall_s : 0.0},
       // Lazy RK rows (solver.shape_reuse_tolerance): the fraction of rows kept over the run (0 without).
       {"shape_rows_kept_fraction",

@@ -33,14 +33,13 @@
 #include <omp.h>
 #endif
 
-#include <sys/resource.h>
-
 #include <functional>
 #include <memory>
 
 #include "bodies/generators.hpp"
 #include "materials/afc_config.hpp"
 #include "solver/explicit_solver.hpp"
+#include "uhpc/resources.hpp"
 
 namespace {
 
@@ -48,14 +47,6 @@ using namespace uhpc::macro;
 
 StrainConfiguration strain_configuration(std::int64_t arg) {
   return arg == 0 ? StrainConfiguration::Midpoint : arg == 1 ? StrainConfiguration::End : StrainConfiguration::EndpointAverage;
-}
-
-// Peak resident set of the whole process so far, MiB (Linux: ru_maxrss in KiB); not reset between
-// benchmarks, so it is the peak of this one only when it runs alone (--benchmark_filter).
-double peak_rss_mib() {
-  rusage usage{};
-  if (getrusage(RUSAGE_SELF, &usage) != 0) return -1.0;
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
 void BM_ElasticStep(benchmark::State& state) {
@@ -119,7 +110,7 @@ void run_paper_disc(benchmark::State& state, const SolverOptions& options,
   const std::size_t built0 = solver->shapes().rows_built, kept0 = solver->shapes().rows_kept;
   for (auto _ : state)
     if (!solver->step()) state.SkipWithError("step failed");
-  state.counters["peak_rss_MiB"] = peak_rss_mib();
+  state.counters["peak_rss_MiB"] = uhpc::peak_memory_MiB();  // the whole process so far
   // RK rebuilds in the timed steps that searched the neighbours afresh / reused the Verlet candidates.
   state.counters["searches"] = static_cast<double>(solver->shapes().searches - searches0);
   state.counters["reuses"] = static_cast<double>(solver->shapes().reuses - reuses0);

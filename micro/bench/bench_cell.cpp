@@ -11,6 +11,7 @@
 //  BM_ElasticCell: uniaxial_elastic_response (model, assembly, solve, reactions and energy), i.e.
 //    `uhpc-micro elastic` without generating, meshing and writing files.
 //  BM_CrackedCell/k: the crack analysis of the first 3.0 mm cell at 100 um, GMRES corrections on or off.
+//  BM_EnsembleCell/size_um: the crack analysis of the first cell of each size of the shipped ensemble.
 // The settings, the cell, its mesh (generated once, outside any timed loop and any OpenMP region:
 // gmsh is global state), the model, the system and the factorization are built once, on first use,
 // and shared; nothing of it is timed except by its own benchmark. peak_rss_MiB is the process's peak
@@ -18,7 +19,6 @@
 // Run: `cmake --build build --target bench_micro` (3 repetitions, figures in build/bench/micro.json),
 // or build/micro/uhpc_bench_micro [--benchmark_filter=BM_ElasticCell].
 #include <benchmark/benchmark.h>
-#include <sys/resource.h>
 
 #include <array>
 #include <cmath>
@@ -38,6 +38,7 @@
 #include "elastic_settings.hpp"
 #include "stiffness_assembly.hpp"
 #include "uhpc/config.hpp"
+#include "uhpc/resources.hpp"
 #include "uniaxial_cell.hpp"
 
 namespace {
@@ -121,12 +122,6 @@ Factorization factorize(const LinearSystem& sys) {
   else
     f.lu = std::make_unique<Lu>(sys.K);
   return f;
-}
-
-double peak_rss_mib() {
-  rusage usage{};
-  if (getrusage(RUSAGE_SELF, &usage) != 0) return -1.0;
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: KiB
 }
 
 void BM_CellMesh(benchmark::State& state) {
@@ -258,34 +253,48 @@ void BM_ElasticCell(benchmark::State& state) {
   state.counters["nodes"] = static_cast<double>(r.nodes);
   state.counters["dofs"] = static_cast<double>(r.dofs);
   state.counters["E0_bar_MPa"] = r.E0_bar_Pa * 1e-6;
-  state.counters["peak_rss_MiB"] = peak_rss_mib();
+  state.counters["peak_rss_MiB"] = uhpc::peak_memory_MiB();
 }
 BENCHMARK(BM_ElasticCell)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// The crack analysis of the first 3.0 mm cell at 100 um to e = 1.5e-3 (`uhpc-micro run` with
-// data/micro_run.json, without the files), with the Newton corrections by GMRES on an earlier
-// factorization (arg: newton.krylov_iterations; 0: a factorization per iteration). The two args run
-// back to back: compare their ratio.
-void BM_CrackedCell(benchmark::State& state) {
-  static const ElasticSettings s = load_settings(0.003, {"cell.discretization.nominal_spacing_m=1e-4"});
-  static const GeneratedCell c = generate_cell(s.cell.cell, s.cell.seed);
-  static const CellDiscretization m = mesh_cell(c.geometry, s.cell.mesh);
+// The crack analysis of the first cell of `size_m` of the shipped ensemble at 100 um (the ensemble's
+// mesh, `cell_overrides` of data/micro_analysis_ensemble.json) to e = 1.5e-3 (its strain grid's end),
+// with the shipped solver options but newton.krylov_iterations = `krylov`: `uhpc-micro ensemble` on
+// that one cell without the files. The cell and its mesh are made outside the timed loop.
+void crack_first_cell(benchmark::State& state, double size_m, int krylov) {
+  const ElasticSettings s = load_settings(size_m, {"cell.discretization.nominal_spacing_m=1e-4"});
+  const GeneratedCell c = generate_cell(s.cell.cell, s.cell.seed);
+  const CellDiscretization m = mesh_cell(c.geometry, s.cell.mesh);
   const CellMaterial material = read_cell_material(uhpc::Config::load(s.cell.microstructure_file).section("matrix"));
   CellAnalysisOptions o;
-  o.max_strain = 1.5e-3;  // data/micro_run.json's strain grid end
-  o.krylov_iterations = static_cast<int>(state.range(0));
+  o.max_strain = 1.5e-3;
+  o.krylov_iterations = krylov;
   CellResponse r;
   for (auto _ : state) r = analyze_cell(c.geometry, m, material, o);
   state.SetLabel(to_string(r.status));
   double peak = 0.0;
   for (const CellState& x : r.states) peak = std::max(peak, x.sigma_bar_Pa);
   state.counters["dofs"] = static_cast<double>(r.dofs);
+  state.counters["states"] = static_cast<double>(r.states.size());
   state.counters["peak_MPa"] = peak * 1e-6;
   state.counters["factorizations"] = static_cast<double>(r.factorizations);
   state.counters["krylov_products"] = static_cast<double>(r.krylov_products);
-  state.counters["peak_rss_MiB"] = peak_rss_mib();
+  state.counters["peak_rss_MiB"] = uhpc::peak_memory_MiB();
 }
+
+// The first 3.0 mm cell with the Newton corrections by GMRES on an earlier factorization (arg:
+// newton.krylov_iterations; 0: a factorization per iteration). The two args run back to back: compare
+// their ratio.
+void BM_CrackedCell(benchmark::State& state) { crack_first_cell(state, 0.003, static_cast<int>(state.range(0))); }
 BENCHMARK(BM_CrackedCell)->Arg(0)->Arg(16)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// One cell per size of the ensemble (arg: size in um), shipped options: what a cell of each size costs,
+// the 6.5 mm cell (5-19 min) most of all. peak_rss_MiB is the process's so far: run one size alone for
+// its own figure, e.g. --benchmark_filter='BM_EnsembleCell/6500'.
+void BM_EnsembleCell(benchmark::State& state) {
+  crack_first_cell(state, 1e-6 * static_cast<double>(state.range(0)), CellAnalysisOptions{}.krylov_iterations);
+}
+BENCHMARK(BM_EnsembleCell)->Arg(3000)->Arg(4500)->Arg(5000)->Arg(6500)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
