@@ -137,7 +137,7 @@ class Analysis {
   // the pseudo-time relaxation there (see cell_analysis.hpp). Returns "" or a diagnostic.
   std::string relax(double dlambda, int& iterations);
   struct Snapshot {
-    CrackStage::Saved cracks;
+    CrackStage::Saved cracks;  // the geometry and the cohesive history
     Eigen::VectorXd d;
     double lambda;
   };
