@@ -203,8 +203,6 @@ nlohmann::json cell_summary_json(const CellJob& job, const CellResult& r, const 
   j["factorizations"] = resp.factorizations;
   j["krylov_corrections"] = resp.krylov_corrections;
   j["krylov_products"] = resp.krylov_products;
-  j["update_corrections"] = resp.update_corrections;
-  j["update_columns"] = resp.update_columns;
   j["operator_energy_mismatch"] = resp.operator_energy_mismatch;
   j["wall_s"] = resp.wall_s;
   j["post_options"] = post_options_json(o);
@@ -286,8 +284,6 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
     r.factorizations = j.at("factorizations").get<std::size_t>();
     r.krylov_corrections = j.value("krylov_corrections", std::size_t{0});  // absent before revision 3
     r.krylov_products = j.value("krylov_products", std::size_t{0});
-    r.update_corrections = j.value("update_corrections", std::size_t{0});  // absent before revision 4
-    r.update_columns = j.value("update_columns", std::size_t{0});
     r.operator_energy_mismatch = j.at("operator_energy_mismatch").get<double>();
     r.wall_s = j.at("wall_s").get<double>();
     const std::lock_guard<std::mutex> lock(hdf5_mutex());

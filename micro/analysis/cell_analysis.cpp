@@ -56,7 +56,7 @@ class Analysis {
         base_(build_rk_galerkin_model(mesh, o.rk)),
         stage_(base_, mesh, unit_, far_, axis_, constraint_points(unit_), o.enrichment, o.field_transfer,
                law_.activation_opening(), cracks_from_seeds(cell, mesh, o.growth)),
-        tangent_(o.tangent_solver),
+        tangent_(o.krylov_iterations),
         books_(o.energy_tolerance),
         steps_({o.opening_increment, o.min_opening_increment, o.max_opening_increment},
                {o.strain_increment, o.min_strain_increment, o.max_strain_increment}, o.step_growth),
@@ -198,31 +198,6 @@ class Analysis {
   CellState state(int iterations);
 };
 
-namespace {
-
-// The bordered tangent of a FractureSystem's last evaluation with the constraint row (g, corner).
-class SystemTangent final : public BorderedTangent {
- public:
-  SystemTangent(const FractureSystem& sys, const Eigen::VectorXd& g, double corner) : sys_(sys), g_(g), corner_(corner) {}
-  Eigen::SparseMatrix<double> matrix(double row_scale) const override {
-    return sys_.bordered(g_ * row_scale, corner_ * row_scale);
-  }
-  Eigen::VectorXd constraint_row() const override {
-    Eigen::VectorXd row(g_.size() + 1);
-    row << g_, corner_;
-    return row;
-  }
-  const Eigen::SparseMatrix<double>& point_columns() const override { return sys_.jump_columns(); }
-  const std::vector<std::array<double, 4>>& point_blocks() const override { return sys_.point_tangents(); }
-
- private:
-  const FractureSystem& sys_;
-  const Eigen::VectorXd& g_;
-  double corner_;
-};
-
-}  // namespace
-
 NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHistory>& trial,
                               const OpeningViscosity* viscosity) {
   NewtonResult res;
@@ -270,10 +245,12 @@ NewtonResult Analysis::newton(Hold hold, double target, std::vector<CohesiveHist
     const long key = viscosity          ? -(1L << 40) - stage_.id()
                      : hold == Hold::Zone ? -2 - zone_id_
                                           : 2 * stage_.id() + (hold == Hold::Lambda ? 0 : 1);
-    // The constraint row is scaled so that its tolerance is the residual's (the solver's accuracy test
-    // is on one norm over both).
-    const SystemTangent tangent(sys, hold == Hold::Lambda ? zero : g, hold == Hold::Lambda ? 1.0 : 0.0);
-    BorderedTangentSolver::Correction c = tangent_.solve(key, it == 0, tolerance / cscale, tangent, r, cres, tolerance);
+    // The constraint row is scaled so that its tolerance is the residual's (GMRES minimizes one norm
+    // over both).
+    const auto assemble = [&](double row_scale) {
+      return hold == Hold::Lambda ? sys.bordered(zero, row_scale) : sys.bordered(g * row_scale, 0.0);
+    };
+    BorderedTangentSolver::Correction c = tangent_.solve(key, it == 0, tolerance / cscale, assemble, r, cres, tolerance);
     if (!c.ok) {
       res.why = c.why;
       return res;
@@ -587,8 +564,6 @@ CellResponse Analysis::run(const FractureObserver& observer) {
   out_.factorizations = tangent_.factorizations();
   out_.krylov_corrections = tangent_.krylov_corrections();
   out_.krylov_products = tangent_.krylov_products();
-  out_.update_corrections = tangent_.update_corrections();
-  out_.update_columns = tangent_.update_columns();
   out_.operator_energy_mismatch = books_.operator_mismatch();
   return std::move(out_);
 }

@@ -39,7 +39,6 @@
 //     gives less than this at the strain the cell was unloaded from.
 #include <functional>
 
-#include "bordered_tangent_solver.hpp"
 #include "cell_geometry.hpp"
 #include "cell_mesh.hpp"
 #include "cell_response.hpp"
@@ -143,9 +142,9 @@ struct CellAnalysisOptions {
   int max_relaxation_steps = 2000;       // pseudo-time steps of one jump
   int max_iterations = 25;               // Newton iterations per step
   int line_search_halvings = 4;          // halvings of a step that raises |r| (0: plain Newton)
-  // How a Newton correction on a tangent other than the factorized one is solved: GMRES preconditioned
-  // with the factorization (default) or its low-rank update (bordered_tangent_solver.hpp).
-  TangentSolverOptions tangent_solver;
+  // GMRES iterations allowed for a Newton correction with the last factorization as preconditioner
+  // before the new tangent is factorized (0: factorize every iteration; preconditioned_gmres.hpp).
+  int krylov_iterations = 16;
   double tolerance = 1e-8;               // |r| <= tolerance x |f_unit| x lambda at first cracking
   int easy_iterations = 4;               // steps that converge in at most this many grow by step_growth
   double step_growth = 1.5;

@@ -101,11 +101,7 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
   opt(c, "newton.max_iterations", o.max_iterations, Range::at_least(1));
   opt(c, "newton.line_search_halvings", o.line_search_halvings, Range::closed(0, 30));
   opt(c, "newton.tolerance", o.tolerance, Range::open(0.0, 1.0));
-  if (c.has("newton.tangent_update"))
-    o.tangent_solver.update = c.choice("newton.tangent_update", {"gmres", "low_rank"}) == "low_rank" ? TangentUpdate::LowRank
-                                                                                                     : TangentUpdate::Gmres;
-  opt(c, "newton.max_update_rank", o.tangent_solver.max_update_rank, Range::closed(0, 1000));
-  opt(c, "newton.krylov_iterations", o.tangent_solver.krylov_iterations, Range::closed(0, 200));
+  opt(c, "newton.krylov_iterations", o.krylov_iterations, Range::closed(0, 200));
   // Consistency between keys.
   if (o.min_opening_increment > o.opening_increment)
     c.fail("path.min_opening_increment", "must not exceed path.opening_increment");

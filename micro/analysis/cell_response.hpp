@@ -49,8 +49,6 @@ struct CellResponse {
   std::size_t factorizations = 0;    // numeric LU factorizations of the Newton matrix (the main cost)
   std::size_t krylov_corrections = 0;  // Newton corrections solved by GMRES with an earlier factorization
   std::size_t krylov_products = 0;     // GMRES iterations over all of them (one triangular solve each)
-  std::size_t update_corrections = 0;  // Newton corrections solved by a low-rank update of a factorization
-  std::size_t update_columns = 0;      // the columns those updates solved and kept (one triangular solve each)
   // Largest |operator energy - (bulk + boundary energy)| over the states, relative to the largest
   // external work so far (FractureSystem::operator_energy): 1e-2 on the elastic branch (VCI's
   // asymmetry); far above that, the cracked operator has a spurious soft mode and the path is suspect.

@@ -165,15 +165,6 @@ FractureSystem::FractureSystem(const RkGalerkinModel& base, const EnrichedModel&
       }
   }
   values_ = lin_;
-  // The jump operator of each cohesive point, one column per component.
-  std::vector<Eigen::Triplet<double>> jump;
-  jump.reserve(2 * em.jump_node.size());
-  for (std::size_t p = 0; p < em.cohesive.size(); ++p)
-    for (std::int64_t e = em.cohesive[p].begin; e < em.cohesive[p].end; ++e)
-      for (int c = 0; c < 2; ++c)
-        jump.emplace_back(2 * em.jump_node[e] + c, static_cast<int>(2 * p) + c, em.jump_coefficient[e]);
-  jump_columns_.resize(static_cast<Eigen::Index>(2 * n), static_cast<Eigen::Index>(2 * em.cohesive.size()));
-  jump_columns_.setFromTriplets(jump.begin(), jump.end());
 }
 
 void FractureSystem::add_block(std::vector<double>& v, std::int32_t i, std::int32_t j, const double b[2][2]) const {
@@ -190,11 +181,8 @@ void FractureSystem::evaluate(const Eigen::VectorXd& d, double lambda, const Coh
   const Eigen::Map<const Eigen::SparseMatrix<double>> K(N, N, static_cast<Eigen::Index>(lin_.size()), col_start_.data(),
                                                         rows_.data(), lin_.data());
   residual = K * d - lambda * f_unit_;
+  if (tangent) values_ = lin_;
   const std::size_t m = em_.cohesive.size();
-  if (tangent) {
-    values_ = lin_;
-    point_tangents_.resize(m);
-  }
   eval.trial.resize(m);
   eval.opening.resize(m);
   eval.traction.resize(m);
@@ -246,7 +234,6 @@ void FractureSystem::evaluate(const Eigen::VectorXd& d, double lambda, const Coh
         for (int k = 0; k < 2; ++k)
           for (int l = 0; l < 2; ++l) C[a][b] += Qa[k] * r.tangent[2 * k + l] * Qb[l];
       }
-    point_tangents_[p] = {q.weight * C[0][0], q.weight * C[0][1], q.weight * C[1][0], q.weight * C[1][1]};
     for (std::int64_t ei = q.begin; ei < q.end; ++ei)
       for (std::int64_t ej = q.begin; ej < q.end; ++ej) {
         const double f = q.weight * em_.jump_coefficient[ei] * em_.jump_coefficient[ej];

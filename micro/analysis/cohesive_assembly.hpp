@@ -57,14 +57,6 @@ class FractureSystem {
   // The bordered tangent [[K_T, -f_unit], [row^T, corner]] of the last evaluate(.., tangent = true).
   Eigen::SparseMatrix<double> bordered(const Eigen::VectorXd& row, double corner) const;
 
-  // The cohesive part of K_T as a sum of rank-2 terms, K_coh = sum_p Q_p C_p Q_p^T: Q_p the two columns
-  // 2p, 2p + 1 of jump_columns() (the jump operator of point p, x and y, fixed with the system) and C_p
-  // the point's 2 x 2 tangent in global axes times its weight (row-major), of the last
-  // evaluate(.., tangent = true). Between Newton iterations only the C_p change: the low-rank update of
-  // the tangent's factorization (bordered_tangent_solver.hpp) works on these.
-  const Eigen::SparseMatrix<double>& jump_columns() const { return jump_columns_; }
-  const std::vector<std::array<double, 4>>& point_tangents() const { return point_tangents_; }
-
   // c(d) = sum over active cohesive points of w n . [[u]] (the crack-opening control), and its gradient.
   double opening_integral(const Eigen::VectorXd& d) const;
   Eigen::VectorXd opening_gradient() const;
@@ -93,8 +85,6 @@ class FractureSystem {
   std::vector<int> col_start_, rows_;
   std::vector<double> lin_, values_;
   Eigen::VectorXd f_unit_;
-  Eigen::SparseMatrix<double> jump_columns_;             // dofs x 2 per cohesive point
-  std::vector<std::array<double, 4>> point_tangents_;  // w_p C_p per cohesive point
   double k_lambda_ = 0.0;  // d reaction / d lambda at fixed d (the far face's Nitsche penalty)
 
   void add_block(std::vector<double>& v, std::int32_t i, std::int32_t j, const double b[2][2]) const;

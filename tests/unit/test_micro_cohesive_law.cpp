@@ -248,18 +248,9 @@ TEST(microCellAnalysisSettings, GrowthFallbackLineSearchAndCrackedCorrection) {
             "run.json: key 'analysis.growth.fallback': value 'always_unload' is not one of: unload_and_regrow, fail, relax");
 }
 
-TEST(microCellAnalysisSettings, TangentSolver) {
-  const TangentSolverOptions d = read(R"({"analysis": {}})").tangent_solver;
-  EXPECT_EQ(d.update, TangentUpdate::Gmres);
-  EXPECT_EQ(d.max_update_rank, 64);
-  EXPECT_EQ(d.krylov_iterations, 16);
-  EXPECT_EQ(read(R"({"analysis": {"newton": {"tangent_update": "low_rank"}}})").tangent_solver.update, TangentUpdate::LowRank);
-  EXPECT_EQ(read(R"({"analysis": {"newton": {"max_update_rank": 0}}})").tangent_solver.max_update_rank, 0);
-  EXPECT_EQ(read(R"({"analysis": {"newton": {"krylov_iterations": 0}}})").tangent_solver.krylov_iterations, 0);
-  EXPECT_EQ(error(R"({"analysis": {"newton": {"tangent_update": "cholmod"}}})"),
-            "run.json: key 'analysis.newton.tangent_update': value 'cholmod' is not one of: gmres, low_rank");
-  EXPECT_EQ(error(R"({"analysis": {"newton": {"max_update_rank": -1}}})"),
-            "run.json: key 'analysis.newton.max_update_rank': value -1 is out of range, must be in [0, 1000]");
+TEST(microCellAnalysisSettings, KrylovIterations) {
+  EXPECT_EQ(read(R"({"analysis": {}})").krylov_iterations, 16);
+  EXPECT_EQ(read(R"({"analysis": {"newton": {"krylov_iterations": 0}}})").krylov_iterations, 0);
   EXPECT_EQ(error(R"({"analysis": {"newton": {"krylov_iterations": -1}}})"),
             "run.json: key 'analysis.newton.krylov_iterations': value -1 is out of range, must be in [0, 200]");
 }
