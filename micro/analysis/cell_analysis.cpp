@@ -136,6 +136,13 @@ class Analysis {
   // JumpFallback::Relax: from the last accepted state, the far face one strain_increment further and
   // the pseudo-time relaxation there (see cell_analysis.hpp). Returns "" or a diagnostic.
   std::string relax(double dlambda, int& iterations);
+  // Its parts: the largest motion of a cohesive point's opening (eval_) since `reference`, points
+  // beyond w_c not counted; the norm of the viscous forces at the current state (r: the residual
+  // without them, eval_ its evaluation).
+  double opening_motion(const std::vector<std::array<double, 2>>& reference,
+                        const std::vector<CohesiveHistory>& history) const;
+  double viscous_force(const OpeningViscosity& viscosity, const std::vector<CohesiveHistory>& history,
+                       Eigen::VectorXd& r);
   struct Snapshot {
     CrackStage::Saved cracks;  // the geometry and the cohesive history
     Eigen::VectorXd d;
@@ -189,6 +196,24 @@ class Analysis {
   // Grows every tip at f_t and re-equilibrates, repeatedly. Returns "" or a failure diagnostic;
   // sets unloaded_ when it passed a growth event by unloading (then there is no state to emit).
   std::string grow(int& iterations);
+  // Its parts. The tips at f_t, most stressed first:
+  std::vector<std::size_t> tips_at_strength(const std::vector<TipCriterion>& t) const;
+  // One growth round: the tips `ready` advance and the cell re-equilibrates (all of them, else only the
+  // most stressed). NoGrowth: no tip could advance; NoEquilibrium: `why` none was found (restore!).
+  struct GrowthRound {
+    enum Outcome { NoGrowth, Equilibrium, NoEquilibrium } outcome;
+    std::string why;
+  };
+  GrowthRound advance_and_equilibrate(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t,
+                                      const Snapshot& before, int& iterations);
+  // Newton on the grown geometry under the growth hold; false (with why) when it fails or creates energy.
+  bool equilibrate_grown(const Snapshot& before, int& iterations, std::string& why);
+  // GrowthFallback::Relax: the tips advance and the crack runs (relax()); "" or a diagnostic.
+  std::string run_through(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t,
+                          const Snapshot& before, const std::string& why, int& iterations);
+  // GrowthFallback::UnloadAndRegrow (and the verification hook): unload, then advance; "" or a diagnostic.
+  std::string unload_at_growth(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t);
+  std::string unreachable(double created) const;  // the diagnostic of a growth that creates energy
   // GrowthFallback::UnloadAndRegrow at the converged state before growth: unloads to zero along the
   // secants (the work is booked), then advances the crack tips `ready` in their `directions`.
   void unload_and_advance(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t);
@@ -287,100 +312,123 @@ std::string Analysis::grow(int& iterations) {
   unloaded_ = false;
   for (int round = 0; round < o_.max_growth_per_step; ++round) {
     const std::vector<TipCriterion> t = criteria();
-    std::vector<std::size_t> ready;
-    for (std::size_t c = 0; c < stage_.cracks().size(); ++c)
-      if (t[c].valid && t[c].stress_Pa >= law_.tensile_strength_Pa * (1.0 - 1e-9)) ready.push_back(c);
+    const std::vector<std::size_t> ready = tips_at_strength(t);
     if (ready.empty()) return "";
-    std::stable_sort(ready.begin(), ready.end(), [&](std::size_t a, std::size_t b) { return t[a].stress_Pa > t[b].stress_Pa; });
-    // An unload books the state as it is: growth rounds before it that created energy (a re-equilibration
-    // into an unreachable equilibrium) would pass unseen, so they fail the load step instead.
-    const auto unreachable = [&](double created) {
-      return fmt::format("re-equilibration after crack growth creates energy ({:.3g} of the largest work)",
-                         created / books_.largest_work());
-    };
-    if (o_.verification.unload_at_every_growth) {
-      if (const double created = excess_energy(); created > 0.0) return unreachable(created);
-      unload_and_advance(ready, t);
-      return "";
-    }
+    if (o_.verification.unload_at_every_growth) return unload_at_growth(ready, t);
     const Snapshot before = snapshot();
-    std::string why;
-    bool ok = false;
-    // Every tip at f_t advances; if the new geometry does not re-equilibrate, only the most stressed.
-    for (int attempt = 0; attempt < 2 && !ok; ++attempt) {
-      if (attempt == 1) {
-        if (ready.size() == 1) break;
-        restore(before, true);
-      }
-      bool grew = false;
-      for (std::size_t k = 0; k < (attempt == 0 ? ready.size() : 1); ++k)
-        grew = advance_crack(stage_.cracks(), ready[k], t[ready[k]].direction, cell_, mesh_, o_.growth) || grew;
-      if (!grew) {
-        if (attempt == 0) return "";
-        break;
-      }
-      build_stage();
-      // Re-equilibrate the new geometry: at the same far-face displacement while nothing softens (the
-      // new segments sit on their stiff activation branch), at the same crack opening afterwards (on
-      // the softening branch a fixed displacement may have no nearby equilibrium): by default that of
-      // the segments there were before, as a Hold::Zone of them (GrowthHold, cell_analysis.hpp).
-      const bool opening = o_.control == PathControl::CrackOpening && stage_.softening();
-      const bool old_only = opening && o_.growth_hold == GrowthHold::OldSegments && select_old_segments(before.cracks.cracks);
-      const Hold hold = old_only ? Hold::Zone : opening ? Hold::Opening : Hold::Lambda;
-      const double target = old_only  ? stage_.system().opening_gradient(zone_).dot(d_)
-                            : opening ? stage_.system().opening_integral(d_)
-                                      : lambda_;
-      const Eigen::VectorXd d0 = d_;
-      const double l0 = lambda_;
-      std::vector<CohesiveHistory> trial;
-      NewtonResult n = newton(hold, target, trial);
-      if (!n.ok && hold != Hold::Lambda) {
-        d_ = d0;
-        lambda_ = l0;
-        n = newton(Hold::Lambda, l0, trial);
-      }
-      if (n.ok) {
-        ok = true;
-        iterations += n.iterations;
-        commit(trial);
-        // An equilibrium out of reach (one that creates energy: the held opening or displacement found
-        // a far branch) counts as none, whatever the fallback. It was common while build_stage carried
-        // the enriched coefficients by crack and node (field_transfer.hpp: at a junction Newton then
-        // started from another field, with spurious strain energy); the field transfer made it rare.
-        // Unloading first makes any change of functions free (d = 0); the relaxation lets the crack run.
-        if (const double created = excess_energy(); created > 0.0) {
-          ok = false;
-          why = unreachable(created);
-        }
-      } else {
-        why = n.why;
-      }
-    }
-    if (!ok) {
-      restore(before, true);
-      if (o_.growth_fallback == GrowthFallback::Fail) return "re-equilibration after crack growth failed: " + why;
-      if (o_.growth_fallback == GrowthFallback::Relax) {
-        // The grown crack has no equilibrium near this one: it runs (a jump at this strain).
-        const double start = current_imbalance();
-        for (const std::size_t c : ready) advance_crack(stage_.cracks(), c, t[c].direction, cell_, mesh_, o_.growth);
-        build_stage();
-        if (const std::string r = relax(0.0, iterations); !r.empty()) {
-          restore(before, true);
-          return "re-equilibration after crack growth failed (" + why + "), and so did the relaxation: " + r;
-        }
-        const double released = start - current_imbalance();
-        if (released < -o_.energy_tolerance * books_.largest_work()) {
-          restore(before, true);
-          return "the relaxation after crack growth creates energy (" + unreachable(-released) + ")";
-        }
-        books_.book_jump(released);
+    const GrowthRound g = advance_and_equilibrate(ready, t, before, iterations);
+    if (g.outcome == GrowthRound::NoGrowth) return "";
+    if (g.outcome == GrowthRound::Equilibrium) continue;
+    restore(before, true);
+    switch (o_.growth_fallback) {
+      case GrowthFallback::Fail: return "re-equilibration after crack growth failed: " + g.why;
+      case GrowthFallback::Relax:
+        if (std::string why = run_through(ready, t, before, g.why, iterations); !why.empty()) return why;
         continue;
-      }
-      if (const double created = excess_energy(); created > 0.0) return unreachable(created);
-      unload_and_advance(ready, t);
-      return "";  // at zero load no tip is at f_t
+      case GrowthFallback::UnloadAndRegrow: return unload_at_growth(ready, t);  // at zero load no tip is at f_t
     }
   }
+  return "";
+}
+
+std::vector<std::size_t> Analysis::tips_at_strength(const std::vector<TipCriterion>& t) const {
+  std::vector<std::size_t> ready;
+  for (std::size_t c = 0; c < t.size(); ++c)
+    if (t[c].valid && t[c].stress_Pa >= law_.tensile_strength_Pa * (1.0 - 1e-9)) ready.push_back(c);
+  std::stable_sort(ready.begin(), ready.end(), [&](std::size_t a, std::size_t b) { return t[a].stress_Pa > t[b].stress_Pa; });
+  return ready;
+}
+
+std::string Analysis::unreachable(double created) const {
+  return fmt::format("re-equilibration after crack growth creates energy ({:.3g} of the largest work)",
+                     created / books_.largest_work());
+}
+
+std::string Analysis::unload_at_growth(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t) {
+  // An unload books the state as it is: growth rounds before it that created energy (a re-equilibration
+  // into an unreachable equilibrium) would pass unseen, so they fail the load step instead.
+  if (const double created = excess_energy(); created > 0.0) return unreachable(created);
+  unload_and_advance(ready, t);
+  return "";
+}
+
+Analysis::GrowthRound Analysis::advance_and_equilibrate(const std::vector<std::size_t>& ready,
+                                                        const std::vector<TipCriterion>& t, const Snapshot& before,
+                                                        int& iterations) {
+  std::string why;
+  // Every tip at f_t advances; if the new geometry does not re-equilibrate, only the most stressed.
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (attempt == 1) {
+      if (ready.size() == 1) break;
+      restore(before, true);
+    }
+    bool grew = false;
+    for (std::size_t k = 0; k < (attempt == 0 ? ready.size() : 1); ++k)
+      grew = advance_crack(stage_.cracks(), ready[k], t[ready[k]].direction, cell_, mesh_, o_.growth) || grew;
+    if (!grew) {
+      if (attempt == 0) return {GrowthRound::NoGrowth, ""};
+      break;
+    }
+    build_stage();
+    if (equilibrate_grown(before, iterations, why)) return {GrowthRound::Equilibrium, ""};
+  }
+  return {GrowthRound::NoEquilibrium, why};
+}
+
+bool Analysis::equilibrate_grown(const Snapshot& before, int& iterations, std::string& why) {
+  // Re-equilibrate the new geometry: at the same far-face displacement while nothing softens (the
+  // new segments sit on their stiff activation branch), at the same crack opening afterwards (on
+  // the softening branch a fixed displacement may have no nearby equilibrium): by default that of
+  // the segments there were before, as a Hold::Zone of them (GrowthHold, cell_analysis.hpp).
+  const bool opening = o_.control == PathControl::CrackOpening && stage_.softening();
+  const bool old_only = opening && o_.growth_hold == GrowthHold::OldSegments && select_old_segments(before.cracks.cracks);
+  const Hold hold = old_only ? Hold::Zone : opening ? Hold::Opening : Hold::Lambda;
+  const double target = old_only  ? stage_.system().opening_gradient(zone_).dot(d_)
+                        : opening ? stage_.system().opening_integral(d_)
+                                  : lambda_;
+  const Eigen::VectorXd d0 = d_;
+  const double l0 = lambda_;
+  std::vector<CohesiveHistory> trial;
+  NewtonResult n = newton(hold, target, trial);
+  if (!n.ok && hold != Hold::Lambda) {
+    d_ = d0;
+    lambda_ = l0;
+    n = newton(Hold::Lambda, l0, trial);
+  }
+  if (!n.ok) {
+    why = n.why;
+    return false;
+  }
+  iterations += n.iterations;
+  commit(trial);
+  // An equilibrium out of reach (one that creates energy: the held opening or displacement found
+  // a far branch) counts as none, whatever the fallback. It was common while build_stage carried
+  // the enriched coefficients by crack and node (field_transfer.hpp: at a junction Newton then
+  // started from another field, with spurious strain energy); the field transfer made it rare.
+  // Unloading first makes any change of functions free (d = 0); the relaxation lets the crack run.
+  if (const double created = excess_energy(); created > 0.0) {
+    why = unreachable(created);
+    return false;
+  }
+  return true;
+}
+
+std::string Analysis::run_through(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t,
+                                  const Snapshot& before, const std::string& why, int& iterations) {
+  // The grown crack has no equilibrium near this one: it runs (a jump at this strain).
+  const double start = current_imbalance();
+  for (const std::size_t c : ready) advance_crack(stage_.cracks(), c, t[c].direction, cell_, mesh_, o_.growth);
+  build_stage();
+  if (const std::string r = relax(0.0, iterations); !r.empty()) {
+    restore(before, true);
+    return "re-equilibration after crack growth failed (" + why + "), and so did the relaxation: " + r;
+  }
+  const double released = start - current_imbalance();
+  if (released < -o_.energy_tolerance * books_.largest_work()) {
+    restore(before, true);
+    return "the relaxation after crack growth creates energy (" + unreachable(-released) + ")";
+  }
+  books_.book_jump(released);
   return "";
 }
 
@@ -434,33 +482,44 @@ std::string Analysis::relax(double dlambda, int& iterations) {
     }
     iterations += n.iterations;
     commit(trial);
-    // A point opened past w_c keeps only the residual spring and, when its faces touch, slides
-    // frictionless: a fragment held only by such points creeps on under forces below the tolerance
-    // and would never settle. Components without cohesive stiffness do not count as moving.
-    double moved = 0.0;
-    const std::vector<CohesiveHistory> settled_history = flat_history();
-    for (std::size_t p = 0; p < reference.size(); ++p) {
-      const bool free = settled_history[p].kappa >= law_.critical_opening();
-      const double dn = free && eval_.opening[p][0] >= 0.0 ? 0.0 : eval_.opening[p][0] - reference[p][0];
-      const double dt = free ? 0.0 : eval_.opening[p][1] - reference[p][1];
-      moved = std::max(moved, std::hypot(dn, dt));
-    }
+    const std::vector<CohesiveHistory> history = flat_history();
+    const double moved = opening_motion(reference, history);
     // Motion the tolerance cannot resolve does not count either: Newton stops anywhere within
     // |r| <= tolerance, which on a nearly free point (a secant of 1e-4 K0 at kappa = 0.94 w_c) leaves
     // its opening uncertain by far more than `settled`, and at a contact kink the pseudo-steps then
     // chatter around the equilibrium forever (6.5 mm #3 of the 20-cell study: 1e-10 m to and fro for
     // 2000 steps). So the viscous forces of the step, k_v (w - w_previous) assembled, are also
     // compared with the tolerance: below kViscousFraction of it, the step moved by noise.
-    Eigen::VectorXd rv;
-    stage_.system().evaluate(d_, lambda_, law_, settled_history, false, rv, eval_, &viscosity);
-    stage_.system().evaluate(d_, lambda_, law_, settled_history, false, r, eval_);
-    const double viscous = (rv - r).norm();
+    const double viscous = viscous_force(viscosity, history, r);
     reference = eval_.opening;
     if (n.iterations <= o_.easy_iterations) kv = std::max(kv / o_.step_growth, 1e-2 * softening);
     if (moved > settled && viscous > kViscousFraction * o_.tolerance * scale_) continue;
     if (r.norm() <= o_.tolerance * scale_) return "";
   }
   return fmt::format("relaxation did not settle in {} pseudo-time steps", o_.max_relaxation_steps);
+}
+
+double Analysis::opening_motion(const std::vector<std::array<double, 2>>& reference,
+                                const std::vector<CohesiveHistory>& history) const {
+  // A point opened past w_c keeps only the residual spring and, when its faces touch, slides
+  // frictionless: a fragment held only by such points creeps on under forces below the tolerance
+  // and would never settle. Components without cohesive stiffness do not count as moving.
+  double moved = 0.0;
+  for (std::size_t p = 0; p < reference.size(); ++p) {
+    const bool free = history[p].kappa >= law_.critical_opening();
+    const double dn = free && eval_.opening[p][0] >= 0.0 ? 0.0 : eval_.opening[p][0] - reference[p][0];
+    const double dt = free ? 0.0 : eval_.opening[p][1] - reference[p][1];
+    moved = std::max(moved, std::hypot(dn, dt));
+  }
+  return moved;
+}
+
+double Analysis::viscous_force(const OpeningViscosity& viscosity, const std::vector<CohesiveHistory>& history,
+                               Eigen::VectorXd& r) {
+  Eigen::VectorXd rv;
+  stage_.system().evaluate(d_, lambda_, law_, history, false, rv, eval_, &viscosity);
+  stage_.system().evaluate(d_, lambda_, law_, history, false, r, eval_);
+  return (rv - r).norm();
 }
 
 void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t) {
