@@ -2,7 +2,7 @@
 # the run / compare steps are spelt out here rather than through uhpc_regression_case; the bad-input
 # cases use uhpc_bad_input_case. Inputs are made by `uhpc-calibrate synthesize` from the paper's
 # handoff (data/sdel_paper.json) in fixtures; the one stored binary input is the microcell ensemble
-# data/micro_analysis_ensemble_cells/ensemble_4x10.h5 (hours to compute).
+# data/micro_analysis_ensemble_cells/ensemble_4x25.h5 (hours to compute).
 set(CAL ${UHPC_REGRESSION_OUT}/calibrate)
 set(CAL_EXE $<TARGET_FILE:uhpc-calibrate>)
 
@@ -32,9 +32,9 @@ uhpc_calibrate_step(calibrate_synthetic.sdel_compare REQUIRES cal_noisy_sdel
   COMMAND uhpc-compare-json ${CMAKE_CURRENT_SOURCE_DIR}/calibrate_synthetic/expected_sdel_summary.json
           ${CAL}/noisy/sdel/summary.json)
 
-# --- the stored microcell ensemble (4 x 10 cells of uhpc-micro ensemble) -> calibrate ---
+# --- the stored microcell ensemble (4 x 25 cells of uhpc-micro ensemble) -> calibrate ---
 uhpc_calibrate_step(calibrate_microcells.run SETUP cal_micro_fit
-  COMMAND ${CAL_EXE} --ensemble data/micro_analysis_ensemble_cells/ensemble_4x10.h5 --out ${CAL}/microcells/sdel.json)
+  COMMAND ${CAL_EXE} --ensemble data/micro_analysis_ensemble_cells/ensemble_4x25.h5 --out ${CAL}/microcells/sdel.json)
 uhpc_calibrate_step(calibrate_microcells.compare REQUIRES cal_micro_fit
   COMMAND uhpc-compare-json ${CMAKE_CURRENT_SOURCE_DIR}/calibrate_microcells/expected.json ${CAL}/microcells/sdel.json)
 
