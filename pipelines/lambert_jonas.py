@@ -48,18 +48,27 @@ def best_on(v, vr, vbl_grid, p_grid):
     return A[k], B[k], P[k], sse[k]
 
 
+P_SEARCH = (0.5, 6.0)  # the range of p searched when p is free
+
+
 def fit(v, vr, p_fixed=None):
+    """The least-squares fit of (v, vr), with two flags a reader needs before trusting v_bl and p:
+    v_bl_bracketed (some run did not perforate, so the data hold the limit from both sides; without one,
+    v_bl is extrapolated from the perforating runs alone and the sweep does not constrain it) and
+    p_at_search_edge (a free p within 0.01 of an end of P_SEARCH: the optimum lies outside the search)."""
     v = np.asarray(v, dtype=float)
     vr = np.asarray(vr, dtype=float)
     perforating = v[vr > 0]
     v_top = perforating.min() if perforating.size else v.max()
 
-    p_grid = np.array([p_fixed]) if p_fixed else np.arange(0.5, 6.0001, 0.01)
+    p_grid = np.array([p_fixed]) if p_fixed else np.arange(P_SEARCH[0], P_SEARCH[1] + 1e-4, 0.01)
     a, vbl, p, sse = best_on(v, vr, np.arange(0.0, v_top, 0.5), p_grid)
     p_fine = np.array([p_fixed]) if p_fixed else np.linspace(max(0.3, p - 0.02), p + 0.02, 201)
     a, vbl, p, sse = best_on(v, vr, np.linspace(max(0.0, vbl - 1.0), min(v_top - 1e-6, vbl + 1.0), 201), p_fine)
+    edge = not p_fixed and (p <= P_SEARCH[0] + 0.01 or p >= P_SEARCH[1] - 0.01)
     return {"a": float(a), "v_bl_m_s": float(vbl), "p": float(p), "points": int(v.size),
-            "rms_m_s": float(math.sqrt(sse / v.size))}
+            "rms_m_s": float(math.sqrt(sse / v.size)),
+            "v_bl_bracketed": bool(np.any(vr <= 0)), "p_at_search_edge": bool(edge)}
 
 
 def fit_fast(v, vr, p_fixed=None):
@@ -127,8 +136,17 @@ def fit_markdown(fits):
     for name, f in fits.items():
         ci = f.get("bootstrap", {}).get("ci")
         cell = (lambda k, fmt: f"{f[k]:{fmt}}" + (f" [{ci[k][0]:{fmt}}, {ci[k][1]:{fmt}}]" if ci else ""))
-        md.append(f"| {name} | {f['points']} | {cell('a', '.3f')} | {cell('v_bl_m_s', '.1f')} | {cell('p', '.2f')} "
-                  f"| {f['rms_m_s']:.1f} |")
+        vbl_mark = "" if f.get("v_bl_bracketed", True) else " (extrapolated)"
+        p_mark = " (search edge)" if f.get("p_at_search_edge") else ""
+        md.append(f"| {name} | {f['points']} | {cell('a', '.3f')} | {cell('v_bl_m_s', '.1f')}{vbl_mark} "
+                  f"| {cell('p', '.2f')}{p_mark} | {f['rms_m_s']:.1f} |")
+    if any(not f.get("v_bl_bracketed", True) for f in fits.values()):
+        md += ["", "(extrapolated): every run of these data perforated, so v_bl is the fitted curve's foot below "
+               "the slowest run, not a limit the data bracket; run slower shots (or `make ballistic-limit`) to "
+               "bracket it."]
+    if any(f.get("p_at_search_edge") for f in fits.values()):
+        md += ["", f"(search edge): the free p ended at an end of its search [{P_SEARCH[0]:g}, {P_SEARCH[1]:g}]: "
+               "the data do not fix p; read the p = 1 fit instead."]
     boot = next((f["bootstrap"] for f in fits.values() if "bootstrap" in f), None)
     if boot:
         md.append("")

@@ -196,11 +196,13 @@ def thickness(args):
         br = f"{'' if lo is None else f'{lo:g}'} .. {'' if hi is None else f'{hi:g}'}"
         f = s["lambert_jonas_p2"]
         md.append(f"| {s['thickness_m'] * 1e3:.2f} | {len(s['runs'])} | {vr_cells} | {br} | "
-                  + (f"{f['v_bl_m_s']:.1f} | {f['a']:.3f} | {f['rms_m_s']:.1f} |" if f else "fewer than 2 perforating runs | | |"))
+                  + (f"{f['v_bl_m_s']:.1f}{'' if f['v_bl_bracketed'] else ' (extrapolated)'} | {f['a']:.3f} | "
+                     f"{f['rms_m_s']:.1f} |" if f else "fewer than 2 perforating runs | | |"))
     md += ["", "Ballistic limit: the bracket is the fastest run that did not perforate .. the slowest that did "
            "(empty end: none); v_bl is the Lambert-Jonas fit of that thickness's runs with p held at 2 "
            "(vr = a (v^2 - v_bl^2)^(1/2); at least two perforating runs), undecided runs left out; with few "
-           "velocities trust the bracket first."]
+           "velocities trust the bracket first. (extrapolated): every run of that thickness perforated, so v_bl "
+           "is the fitted curve's foot, not bracketed by the runs."]
     if measured:
         md += ["", "The seven shots at their measured thickness (`make shots-measured`) and the experiments:", "",
                "| v0 m/s | thickness mm | outcome | vr m/s | Table 5 vr m/s |", "|---|---|---|---|---|"]
