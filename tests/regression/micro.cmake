@@ -7,6 +7,13 @@ uhpc_regression_case(NAME micro_generate_ensemble OUTPUT statistics.json
   COMMAND $<TARGET_FILE:uhpc-micro> -q generate-ensemble --config data/micro_ensemble.json --set realizations=2
           --set cell.discretization.nominal_spacing_m=1e-4)
 
+# --- the archived cells of the shipped ensemble reload (their hash is today's) and assemble to the stored
+#     ensemble_4x25.h5: a stale archive would make `make micro-ensemble` recompute all 100 cells ---
+add_test(NAME regression.micro_archived_cells_reload
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/check_archived_cells.py --micro $<TARGET_FILE:uhpc-micro>
+                 --source ${PROJECT_SOURCE_DIR} --out ${UHPC_REGRESSION_OUT}/micro_archived_cells)
+set_tests_properties(regression.micro_archived_cells_reload PROPERTIES LABELS regression TIMEOUT 120)
+
 # --- bad input: exit 2, one line naming file, key and reason ---
 set(_micro $<TARGET_FILE:uhpc-micro>)
 set(_bad ${UHPC_REGRESSION_OUT}/bad)
