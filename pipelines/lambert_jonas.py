@@ -81,7 +81,7 @@ def fit_fast(v, vr, p_fixed=None):
     v_top = perforating.min() if perforating.size else v.max()
 
     db, dp = 5.0, 0.05
-    p_grid = np.array([p_fixed]) if p_fixed else np.arange(0.5, 6.0001, dp)
+    p_grid = np.array([p_fixed]) if p_fixed else np.arange(P_SEARCH[0], P_SEARCH[1] + 1e-4, dp)
     a, vbl, p, sse = best_on(v, vr, np.arange(0.0, v_top, db), p_grid)
     for _ in range(2):
         b_grid = np.clip(vbl + np.linspace(-db, db, 21), 0.0, v_top - 1e-6)
