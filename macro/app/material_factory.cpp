@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "materials/afc.hpp"
 #include "materials/afc_config.hpp"
 
 namespace uhpc::macro {
@@ -34,8 +35,10 @@ std::string relative_to(const Config& block, const std::string& path) {
   return (std::filesystem::path(block.source()).parent_path() / path).string();
 }
 
-// {"model": "afc", "constants_file": "afc_uhpc.json", "sdel_file": "sdel_paper.json"}: the constants
-// (Table 6, with an optional "options" block) and the SDEL handoff; --sdel replaces sdel_file.
+// {"model": "afc", "constants_file": "afc_uhpc.json", "sdel_file": "sdel_paper.json", "options": {...}}:
+// the constants (Table 6, with an optional "options" block), the SDEL handoff (--sdel replaces
+// sdel_file) and the case's own optional "options", which override the constants file's key by key
+// (so --set material.options.lode=willam_warnke needs no copy of the constants).
 AfcParams read_afc(const Config& block, const std::optional<SdelHandoff>& sdel, MaterialInputs& record) {
   const std::string constants = relative_to(block, block.text("constants_file"));
   const std::string sdel_file = relative_to(block, block.text("sdel_file"));
@@ -43,6 +46,14 @@ AfcParams read_afc(const Config& block, const std::optional<SdelHandoff>& sdel, 
   const Config cfg = Config::load(constants);
   AfcParams p = afc_params_from_config(cfg, handoff);
   cfg.finish();
+  if (block.has("options")) {
+    p.options = afc_options_from_config(block.section("options"), p.options);
+    try {
+      (void)AfcMaterial(p);
+    } catch (const std::invalid_argument& e) {
+      block.fail("options", e.what());
+    }
+  }
   record.files_read.push_back(constants);
   if (!sdel) {
     record.files_read.push_back(sdel_file);

@@ -57,7 +57,7 @@ History::History() {
       "contact_force_x_N,contact_force_y_N,contact_force_z_N,contact_particles,kinetic_J,kinetic_sphere_J,"
       "internal_J,dissipated_material_J,dissipated_viscous_J,contact_J,contact_stored_J,external_work_J,"
       "energy_balance_error_J,momentum_x_N_s,momentum_y_N_s,momentum_z_N_s,elastic_stored_J,plastic_J,crushing_J,"
-      "released_J,stabilization_J,stabilization_stored_J\n";
+      "released_J,stabilization_J,stabilization_stored_J,opening_J\n";
 }
 
 void History::add(const ExplicitSolver& s) {
@@ -65,12 +65,12 @@ void History::add(const ExplicitSolver& s) {
   const RigidSphere& sp = s.sphere();
   text_ += fmt::format("{:.17g},{},{:.6e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.6e},{:.6e},{},{:.9e},{:.9e},"
                        "{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.6e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},"
-                       "{:.9e},{:.9e},{:.9e}\n",
+                       "{:.9e},{:.9e},{:.9e},{:.9e}\n",
                        s.time(), s.steps(), s.last_dt(), sp.x[0], sp.x[1], sp.x[2], sp.v[0], sp.v[1], sp.v[2],
                        sp.force[0], sp.force[1], sp.force[2], s.contact().particles_in_contact, e.kinetic,
                        e.kinetic_sphere, e.internal, e.material_dissipated, e.viscous, e.contact, e.contact_stored,
                        e.external, e.balance_error(), e.momentum[0], e.momentum[1], e.momentum[2], e.material_stored,
-                       e.plastic, e.crushing, e.released(), e.stabilization, e.stabilization_stored);
+                       e.plastic, e.crushing, e.released(), e.stabilization, e.stabilization_stored, e.opening);
   ++rows_;
 }
 
@@ -143,6 +143,7 @@ nlohmann::json energy_partition_json(const EnergyLedger& e) {
       {"elastic_stored_J", e.material_stored},
       {"plastic_J", e.plastic},
       {"crushing_J", e.crushing},
+      {"opening_J", e.opening},
       {"released_J", e.released()},
       {"stabilization_stored_J", e.stabilization_stored},
       {"stabilization_dissipated_J", e.stabilization_dissipated()},

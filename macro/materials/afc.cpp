@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "materials/afc_strength.hpp"
+#include "materials/principal_stress_limit.hpp"
 
 namespace uhpc::macro {
 
@@ -59,6 +60,11 @@ AfcMaterial::AfcMaterial(const AfcParams& params) : p_(params), hydro_(params) {
     require(s <= hydro_.unloading_modulus(mu) * (1 + 1e-12), "the crushing slope must not exceed the unloading modulus K_u");
   }
   require(p.C8_Pa >= Ke, "the locking modulus C8 must be >= K_e = C6 / C7 (K_u interpolates between them)");
+  require(p.options.principal_stress_limit == PrincipalStressLimit::Off ||
+              p.options.tensile_degradation == TensileDegradation::Cutoff,
+          "principal_stress_limit needs tensile_degradation = cutoff (the split already degrades the tension)");
+  principal_limit_ = p.options.principal_stress_limit == PrincipalStressLimit::Tmax ? p.Tmax_Pa
+                                                                                    : afc_uniaxial_tensile_strength(p);
 }
 
 double AfcMaterial::equivalent_tensile_strain(const Mat3& strain) const {
@@ -105,12 +111,14 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   const Mat3& de = step.strain_increment;
   const Mat3 dev_increment = 2.0 * p_.shear_modulus_Pa * deviator(de);
   const double mu = step.density_ratio - 1.0;
+  // The strain the hydrostat reads: mu itself, less the permanent opening with OpenedVolume::Permanent.
+  double mu_h = mu - st.opening_strain;
   const double F = afc_rate_factor(effective_deviatoric_rate(de, step.dt_s), p_);
 
   // 1. Hydrostat history.
   const double mu_max_old = st.mu_max;
-  st.mu_max = std::max(st.mu_max, mu);
-  const double P_uncut = hydro_.uncut_pressure(mu, st.mu_max);
+  st.mu_max = std::max(st.mu_max, mu_h);
+  double P_uncut = hydro_.uncut_pressure(mu_h, st.mu_max);
   const double mu_p = hydro_.crushing_strain(st.mu_max);
   const double dmu_p = mu_p - st.crushing_strain;
   st.crushing_work += hydro_.crushing_dissipation(mu_max_old, st.mu_max);
@@ -120,14 +128,17 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
     double e;
     if (p_.strain_measure == TensileStrainMeasure::EffectiveTensile) {
       // The driver: no tensile limit; on the compressive side the deviator yields onto eq. 33 as the
-      // effective stress does, so plastic flow in compression is not counted as tension.
+      // effective stress does, so plastic flow in compression is not counted as tension. Its pressure
+      // reads the whole volumetric strain mu (a permanent opening is still tension to the driver, else a
+      // point held at the cutoff could never damage further).
+      const double P_driver = hydro_.uncut_pressure(mu, std::max(st.mu_max, mu));
       Mat3 s_bar = deviator(st.driver_stress) + dev_increment;
-      if (P_uncut >= 0.0) {
-        const double S = afc_strength_compression(P_uncut, st.d_minus, F, p_);
+      if (P_driver >= 0.0) {
+        const double S = afc_strength_compression(P_driver, st.d_minus, F, p_);
         const double q = std::sqrt(1.5 * s_bar.cwiseProduct(s_bar).sum());
         if (q > S) s_bar *= S / q;
       }
-      st.driver_stress = s_bar - P_uncut * Mat3::Identity();
+      st.driver_stress = s_bar - P_driver * Mat3::Identity();
       e = effective_tensile_strain(st.driver_stress);
     } else {
       st.strain += de;
@@ -140,16 +151,35 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   // 3. Effective stress: pressure with the cutoff, deviator returned at fixed pressure onto S. With the
   // split, d+ acts on the stress handed to the solver (5.), not on these limits.
   const double d_plus_in_limits = split ? 0.0 : st.d_plus;
-  const double P = std::max(P_uncut, -p_.Tmax_Pa * (1.0 - d_plus_in_limits));
+  const double T = p_.Tmax_Pa * (1.0 - d_plus_in_limits);
+  const bool permanent = o.opened_volume == OpenedVolume::Permanent;
+  if (permanent && P_uncut < -T) {
+    // Opening past the cutoff is kept: the hydrostat is moved to where its line meets -T, and the work
+    // of the pressure -T over the opened volume is dissipated (per reference volume, -P dV / V0).
+    const double mu_cut = st.mu_max - (hydro_.loading_pressure(st.mu_max) + T) / hydro_.unloading_modulus(st.mu_max);
+    const double opened = mu_h - mu_cut;  // < 0
+    st.opening_strain += opened;
+    st.opening_work += -T * opened / ((1.0 + mu) * (1.0 + mu - opened));  // T (V - V_cut) / V0, exact
+    mu_h = mu_cut;
+    P_uncut = -T;
+  }
+  const double P = std::max(P_uncut, -T);
   Mat3 s = deviator(st.effective_stress) + dev_increment;
   const double q_trial = std::sqrt(1.5 * s.cwiseProduct(s).sum());
   // The branch follows the side of the hydrostat before its cutoff (afc_strength.hpp): at d+ = 1 an
   // expanded point has P = 0 but is open, and eq. 35's limit there is S = 0.
-  const double S = P_uncut < 0.0 ? afc_strength_tension(P, st.d_minus, d_plus_in_limits, F, p_)
-                                 : afc_strength_compression(P, st.d_minus, F, p_);
+  // With the permanent opening a point held at a zero cutoff (d+ = 1) sits at P_uncut = 0 and is open.
+  const bool open_side = P_uncut < 0.0 || (permanent && P_uncut <= -T);
+  double S = open_side ? afc_strength_tension(P, st.d_minus, d_plus_in_limits, F, p_)
+                       : afc_strength_compression(P, st.d_minus, F, p_);
+  if (o.lode == LodeDependence::WillamWarnke) {
+    // r >= psi >= 0.5: below psi S no deviator can yield, so the invariant is only computed above it.
+    const double psi = lode_psi(P, st.d_minus, F, p_);
+    if (q_trial > psi * S) S *= willam_warnke_factor(lode_cos3theta(s), psi);
+  }
   double dep = 0.0;
   st.deviatoric_return = 1.0;
-  st.at_tensile_cutoff = P > P_uncut;
+  st.at_tensile_cutoff = P > P_uncut || (permanent && P_uncut <= -T);
   if (q_trial > S) {
     st.deviatoric_return = S / q_trial;
     dep = (q_trial - S) / (3.0 * p_.shear_modulus_Pa);
@@ -157,18 +187,39 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
     st.plastic_strain += dep;
     st.plastic_work += S * dep / step.density_ratio;  // s : d eps_p = S d eps_p per current volume
   }
+  if (o.principal_stress_limit != PrincipalStressLimit::Off) limit_principal_stress(st, s, P, step.density_ratio);
 
-  // 4. Compressive damage (eq. 36), only under compression; d- enters the next step's strength.
+  // 4. Compressive damage (eq. 36), only under compression; d- enters the next step's strength. The
+  // principal-stress limit is a tensile mechanism (its damage is d+) and does not add to d-.
   if (P > 0.0) {
     const double inc = dep / std::max(P * p_.D1_1_Pa, o.damage_eps_min) + dmu_p / (1.5 * p_.C9);
     st.d_minus = std::min(1.0, st.d_minus + inc);
   }
   st.crushing_strain = mu_p;
-  st.mu = mu;
+  st.mu = mu_h;
   st.effective_stress = s - P * Mat3::Identity();
 
   // 5. The stress the solver integrates (eq. 21): the tensile principal part degraded by 1 - d+.
   st.stress = split ? scale_tensile_part(st.effective_stress, 1.0 - st.d_plus) : st.effective_stress;
+}
+
+void AfcMaterial::limit_principal_stress(State& st, Mat3& s, double P, double density_ratio) const {
+  // sigma_1 = s_1 - P <= T_R (1 - d+). |s_1| <= 2 q / 3, so below that nothing is computed.
+  const double limit = principal_limit_ * (1.0 - st.d_plus);
+  const double c = std::max(limit + P, 0.0);  // >= 0 under the cutoff coupling (P >= -Tmax (1 - d+))
+  const double norm2 = s.cwiseProduct(s).sum();
+  if (std::sqrt(2.0 / 3.0 * norm2) <= c) return;
+  const Mat3 s_new = limit_principal_deviator(s, c);
+  const Mat3 ds = s - s_new;  // 2G d eps_p
+  const double ds2 = ds.cwiseProduct(ds).sum();
+  if (!(ds2 > 0.0)) return;
+  const double G = p_.shear_modulus_Pa;
+  st.plastic_strain += std::sqrt(2.0 / 3.0 * ds2) / (2.0 * G);
+  st.plastic_work += s_new.cwiseProduct(ds).sum() / (2.0 * G) / density_ratio;  // per reference volume
+  // The NSNI gradient follows a radial return's factor (Moduli::deviatoric_return); this return is not
+  // radial, and the ratio of the deviators' norms stands for it.
+  st.deviatoric_return *= std::sqrt(s_new.cwiseProduct(s_new).sum() / norm2);
+  s = s_new;
 }
 
 void AfcMaterial::rotate(State& st, const Mat3& R) const {
@@ -179,7 +230,13 @@ void AfcMaterial::rotate(State& st, const Mat3& R) const {
 }
 
 bool AfcMaterial::stress_free(const State& st, double density_ratio) const {
-  if (!(st.d_plus >= 1.0 && density_ratio < 1.0)) return false;
+  if (!(st.d_plus >= 1.0)) return false;
+  if (p_.options.opened_volume == OpenedVolume::Permanent) {
+    // Open while the hydrostat reads no compression (at the cut after opening, or below it).
+    if (hydro_.uncut_pressure(density_ratio - 1.0 - st.opening_strain, st.mu_max) > 0.0) return false;
+  } else if (!(density_ratio < 1.0)) {
+    return false;
+  }
   if (p_.options.tensile_degradation == TensileDegradation::Cutoff) return true;
   // The split hands on the compressive principal stresses: free only if the effective stress has none.
   Eigen::SelfAdjointEigenSolver<Mat3> es;
@@ -197,8 +254,8 @@ double AfcMaterial::wave_speed(const State& state, double density_ratio) const {
   // rho0; its speed is that of the closed material. At the current density it would grow as
   // sqrt(V / V0) with a shear modulus that no longer acts, and expanding ejecta (V up to 1e3 V0) would
   // collapse the stable step.
-  if (stress_free(state, density_ratio)) density_ratio = 1.0;
-  const double mu = density_ratio - 1.0;
+  if (stress_free(state, density_ratio)) density_ratio = 1.0 + state.opening_strain;
+  const double mu = density_ratio - 1.0 - state.opening_strain;  // the strain the hydrostat reads
   double slope = hydro_.slope(mu, state.mu_max);
   if (p_.options.wave_speed_from_unloading_modulus)
     slope = std::max(slope, hydro_.unloading_modulus(state.mu_max));
@@ -210,7 +267,7 @@ Moduli AfcMaterial::moduli(const State& state) const {
   // The tangent of the hydrostat at the point's state: the loading slope on the curve (the crushing
   // slope while crushing), K_u on the unloading line. Along the deviator 0: S depends on P, d- and the
   // rate, not on the plastic flow itself (its change with the pressure gradient is neglected).
-  const double bulk = (1.0 + state.mu) * hydro_.slope(state.mu, state.mu_max);
+  const double bulk = (1.0 + state.mu + state.opening_strain) * hydro_.slope(state.mu, state.mu_max);  // rho dP/drho
   const double tension = p_.options.tensile_degradation == TensileDegradation::Split ? 1.0 - state.d_plus : 1.0;
   return {bulk, p_.shear_modulus_Pa, state.deviatoric_return, 0.0, state.at_tensile_cutoff, tension};
 }

@@ -1,22 +1,26 @@
 #pragma once
 // The AFC concrete model with SDEL tensile damage (docs/physics.md section 4; equations as implemented and
 // every option in macro/README.md, "AFC concrete model"). One step at a particle, in this order:
-//   1. hydrostat history: mu = rho/rho0 - 1, mu_max = max(mu_max, mu), the uncut pressure P_u
-//      (afc_hydrostat.hpp, the curve or the unloading line without the tensile cutoff), the crushing
-//      strain mu_p and its dissipation;
+//   1. hydrostat history: mu_h = rho/rho0 - 1 - mu_o (mu_o the permanent opening, 0 unless
+//      OpenedVolume::Permanent), mu_max = max(mu_max, mu_h), the uncut pressure P_u (afc_hydrostat.hpp,
+//      the curve or the unloading line without the tensile cutoff), the crushing strain mu_p and its
+//      dissipation;
 //   2. tensile damage: e = equivalent tensile strain by the handoff's measure, kappa = max(kappa, e),
 //      d+ = max(d+, SDEL(lambda, kappa)), lambda = h_I / l_mac (h_I = MaterialStep::spacing_m). The
 //      default measure (EffectiveTensile) reads the driver stress sigma_bar: the same material with no
-//      tensile limit (P = P_u, the deviator returned only on the compressive side, onto eq. 33), so
-//      e is the norm of the positive principal strains of C^-1 : <sigma_bar>+: zero in uniaxial
-//      compression, the axial strain in uniaxial tension (what the microcells were fitted to), and
-//      rotated with the material (State::driver_stress is objective);
-//   3. effective stress: P = max(P_u, -T); deviator: elastic trial s + 2G dev(d eps), radial return at
-//      fixed pressure (no dilatancy) onto S(P, d-, T, F) (afc_strength.hpp), F from this step's
-//      effective deviatoric rate; T = Tmax with the split (default), Tmax (1 - d+) with the cutoff
-//      coupling; d eps_p = (q_trial - S) / (3G);
+//      tensile limit (P from the whole rho/rho0 - 1, the deviator returned only on the compressive
+//      side, onto eq. 33), so e is the norm of the positive principal strains of C^-1 : <sigma_bar>+:
+//      zero in uniaxial compression, the axial strain in uniaxial tension (what the microcells were
+//      fitted to), and rotated with the material (State::driver_stress is objective);
+//   3. effective stress: T = Tmax (1 - d+) with the cutoff coupling (default), Tmax with the split;
+//      with the permanent opening, a P_u below -T moves mu_o so that P_u = -T (the opened volume is
+//      kept, its work T d(-mu_o) booked); P = max(P_u, -T); deviator: elastic trial s + 2G dev(d eps),
+//      radial return at fixed pressure (no dilatancy) onto S(P, d-, T, F) (afc_strength.hpp), times
+//      the Willam-Warnke factor r(theta, psi(P)) with the Lode option; F from this step's effective
+//      deviatoric rate; d eps_p = (q_trial - S) / (3G); then, with the principal-stress limit, the
+//      closest deviator with s_1 <= T_R (1 - d+) + P (principal_stress_limit.hpp);
 //   4. d- += d eps_p / max(P D1, eps_min) + d mu_p / (1.5 C9) while P > 0 (eq. 36), clipped to 1;
-//   5. the stress handed to the solver: <sigma_e>- + (1 - d+) <sigma_e>+ (split, eq. 21) or sigma_e.
+//   5. the stress handed to the solver: sigma_e, or <sigma_e>- + (1 - d+) <sigma_e>+ with the split (eq. 21).
 // d- enters the strength with its value at the start of the step (explicit), d+ with the new value.
 #include <string>
 #include <vector>
@@ -30,8 +34,8 @@ namespace uhpc::macro {
 class AfcMaterial {
  public:
   struct State {
-    // The stress handed to the solver (eq. 21's split of effective_stress, or effective_stress itself
-    // with the cutoff coupling).
+    // The stress handed to the solver (effective_stress itself with the cutoff coupling, its eq. 21
+    // split with the split).
     Mat3 stress = Mat3::Zero();
     // The AFC stress before the split: hydrostat with its cutoff and the eq. 33/35 return (objective).
     Mat3 effective_stress = Mat3::Zero();
@@ -40,7 +44,7 @@ class AfcMaterial {
     // Sum of the strain increments D dt (Mazars and MaxPrincipal measures only). Kept as the earlier
     // option defined it: not rotated with the material.
     Mat3 strain = Mat3::Zero();
-    double mu = 0.0;               // volumetric strain rho/rho0 - 1 at the end of the last step
+    double mu = 0.0;               // the hydrostat's volumetric strain rho/rho0 - 1 - opening_strain, last step
     double mu_max = 0.0;           // history maximum of mu (>= 0)
     double crushing_strain = 0.0;  // mu_p, plastic volumetric strain of the hydrostat
     double d_minus = 0.0;          // compressive damage (eq. 36)
@@ -48,6 +52,10 @@ class AfcMaterial {
     double tensile_strain_max = 0.0;  // kappa: history maximum of the equivalent tensile strain
     double plastic_strain = 0.0;   // equivalent (deviatoric) plastic strain
     double plastic_work = 0.0;     // J per unit reference volume: deviatoric plastic work
+    // OpenedVolume::Permanent: the volumetric strain opened past the tensile cutoff (<= 0, kept) and the
+    // work of the cutoff pressure over it (J per unit reference volume, dissipated).
+    double opening_strain = 0.0;
+    double opening_work = 0.0;
     double crushing_work = 0.0;    // J per unit reference volume: crushing of the hydrostat
     double deviatoric_return = 1.0;  // S / q_trial of the last step's radial return (1: elastic step)
     bool at_tensile_cutoff = false;  // the last step's pressure was held at the cutoff
@@ -63,9 +71,10 @@ class AfcMaterial {
   // Dilatational wave speed sqrt((K + 4G/3) / rho), K = rho dP/drho = (1 + mu) dP/dmu the current
   // tangent of the hydrostat (AfcOptions::wave_speed_from_unloading_modulus for the bound).
   double wave_speed(const State& state, double density_ratio) const;
-  // A fully failed point (d+ = 1) that is open (expanded past its reference density) and hands the
-  // solver no stress (with the split: no compressive principal stress left either): it resists nothing
-  // until it closes back to rho0.
+  // A fully failed point (d+ = 1) that is open and hands the solver no stress (with the split: no
+  // compressive principal stress left either): it resists nothing until it closes. Open: expanded past
+  // its reference density (OpenedVolume::Recoverable), or with the permanent opening the hydrostat
+  // reading no compression at rho/rho0 - 1 - opening_strain.
   bool stress_free(const State& state, double density_ratio) const;
   double reference_density() const { return p_.density_kg_m3; }
   // For NSNI: the current tangent (1 + mu) dP/dmu of the hydrostat (the crushing slope while loading on
@@ -77,7 +86,9 @@ class AfcMaterial {
   // Free energy per unit current volume, 1/2 sigma : C_u^-1 : sigma_e (eq. 21: (1 - d+) Psi0+ + Psi0-
   // with the split), C_u the elastic unloading moduli (K_u(mu_max), G).
   double stored_energy(const State& state) const;
-  DissipationParts dissipation(const State& state) const { return {state.plastic_work, state.crushing_work}; }
+  DissipationParts dissipation(const State& state) const {
+    return {state.plastic_work, state.crushing_work, state.opening_work};
+  }
 
   // Per-particle output fields, one value each, in this order.
   static std::vector<std::string> output_fields() {
@@ -96,8 +107,12 @@ class AfcMaterial {
   double sdel_damage(double kappa, double spacing_m) const;
 
  private:
+  // The principal-stress limit's return of the deviator s at pressure P (AfcOptions::principal_stress_limit).
+  void limit_principal_stress(State& state, Mat3& s, double P, double density_ratio) const;
+
   AfcParams p_;
   AfcHydrostat hydro_;
+  double principal_limit_ = 0.0;  // T_R of the principal-stress limit (Pa)
 };
 
 }  // namespace uhpc::macro

@@ -19,19 +19,32 @@ std::string number_text(double v) {
 
 }  // namespace
 
-AfcOptions afc_options_from_config(const uhpc::Config& c) {
-  AfcOptions o;
+AfcOptions afc_options_from_config(const uhpc::Config& c, AfcOptions o) {
   if (c.has("rate_factor_floor")) o.rate_factor_floor = c.number("rate_factor_floor", Range::non_negative());
   if (c.has("cap_strength_with_c5")) o.cap_strength_with_c5 = c.flag("cap_strength_with_c5");
   if (c.has("damage_eps_min")) o.damage_eps_min = c.number("damage_eps_min", Range::positive());
   if (c.has("tensile_degradation"))
-    o.tensile_degradation = c.choice("tensile_degradation", {"split", "cutoff"}) == "cutoff" ? TensileDegradation::Cutoff
-                                                                                             : TensileDegradation::Split;
+    o.tensile_degradation = c.choice("tensile_degradation", {"cutoff", "split"}) == "split" ? TensileDegradation::Split
+                                                                                             : TensileDegradation::Cutoff;
+  if (c.has("lode"))
+    o.lode = c.choice("lode", {"off", "willam_warnke"}) == "off" ? LodeDependence::Off : LodeDependence::WillamWarnke;
+  if (c.has("principal_stress_limit")) {
+    const std::string v = c.choice("principal_stress_limit", {"off", "uniaxial_tensile_strength", "tmax"});
+    o.principal_stress_limit = v == "off"    ? PrincipalStressLimit::Off
+                               : v == "tmax" ? PrincipalStressLimit::Tmax
+                                             : PrincipalStressLimit::UniaxialTensileStrength;
+  }
+  if (c.has("opened_volume"))
+    o.opened_volume = c.choice("opened_volume", {"recoverable", "permanent"}) == "permanent" ? OpenedVolume::Permanent
+                                                                                          : OpenedVolume::Recoverable;
   if (c.has("sdel_zero_anchored")) o.sdel_zero_anchored = c.flag("sdel_zero_anchored");
   if (c.has("tensile_damage"))
     o.tensile_damage = c.choice("tensile_damage", {"sdel", "off"}) == "off" ? TensileDamage::Off : TensileDamage::Sdel;
   if (c.has("wave_speed_from_unloading_modulus"))
     o.wave_speed_from_unloading_modulus = c.flag("wave_speed_from_unloading_modulus");
+  if (o.principal_stress_limit != PrincipalStressLimit::Off && o.tensile_degradation != TensileDegradation::Cutoff)
+    c.fail("principal_stress_limit",
+           "needs tensile_degradation 'cutoff' (with the split the tension is already degraded by 1 - d+)");
   return o;
 }
 

@@ -9,8 +9,12 @@
 //   K3_Pa, D1_1_Pa, An_1_Pa, Tmax_Pa, reference_strain_rate_1_s; "source" (optional text);
 //   "options" (optional object, every key optional, defaults of AfcOptions):
 //     rate_factor_floor (>= 0), cap_strength_with_c5 (bool), damage_eps_min (> 0),
-//     tensile_degradation ("split" | "cutoff"), sdel_zero_anchored (bool), tensile_damage ("sdel" | "off"),
+//     tensile_degradation ("cutoff" | "split"), lode ("off" | "willam_warnke"), principal_stress_limit
+//     ("off" | "uniaxial_tensile_strength" | "tmax"; needs "cutoff"), opened_volume ("recoverable" |
+//     "permanent"), sdel_zero_anchored (bool), tensile_damage ("sdel" | "off"),
 //     wave_speed_from_unloading_modulus (bool).
+// A case file's material.options block (macro/app/material_factory.cpp) takes the same keys and
+// overrides the constants file's, key by key.
 #include <string>
 #include <vector>
 
@@ -20,8 +24,8 @@
 
 namespace uhpc::macro {
 
-// The options block (a section named e.g. "options"); absent keys keep their defaults.
-AfcOptions afc_options_from_config(const uhpc::Config& options);
+// The options block (a section named e.g. "options"); absent keys keep their values in `base`.
+AfcOptions afc_options_from_config(const uhpc::Config& options, AfcOptions base = {});
 
 // The constants from `cfg` (its root is the constants object; an "options" section is read when
 // present) and the SDEL from `sdel`. Does not call cfg.finish(): the caller may embed the constants in

@@ -19,14 +19,50 @@ enum class TensileStrainMeasure {
 
 // How d+ acts on the stress (AfcOptions::tensile_degradation).
 enum class TensileDegradation {
-  // [choice, default] eq. 21's split: the AFC stress with its undamaged tensile limits (cutoff -Tmax,
-  // eq. 35 with T = Tmax) is the effective stress sigma_e kept in the state; the solver gets
-  // sigma = <sigma_e>- + (1 - d+) <sigma_e>+ (principal parts). In uniaxial tension this is the
-  // microcells' (1 - d) E e up to AFC's own undamaged strength.
-  Split,
-  // The paper's AFC coupling as docs/physics.md section 4 states it: d+ lowers the tensile cutoff to
+  // [default] The paper's AFC coupling (docs/physics.md section 4.5: "the two damage variables describe
+  // the degradation of the tensile, d+, and shear, d-, failure surface"): d+ lowers the tensile cutoff to
   // Tmax (1 - d+) and T in eq. 35; the stress tensor itself is not degraded.
   Cutoff,
+  // [option] eq. 21's split applied to the macro stress: the AFC stress with its undamaged tensile
+  // limits (cutoff -Tmax, eq. 35 with T = Tmax) is the effective stress sigma_e kept in the state; the
+  // solver gets sigma = <sigma_e>- + (1 - d+) <sigma_e>+ (principal parts). In uniaxial tension this is
+  // the microcells' (1 - d) E e up to AFC's own undamaged strength. Eq. 21 is the energy bridging that
+  // defines d+ from the microcells, not the paper's macro coupling.
+  Split,
+};
+
+// [choice] The third-invariant (Lode) dependence of the strength (AfcOptions::lode). The paper calls AFC
+// a three-invariant model but prints only the compressive meridian (eqs. 33, 35).
+enum class LodeDependence {
+  Off,  // [default] S(P) on every meridian (Drucker-Prager-like): triaxial extension as strong as compression
+  // S(P) r(theta, psi): Willam-Warnke's elliptic interpolation (Willam and Warnke 1975) between the
+  // compressive meridian (r = 1: eqs. 33/35 as printed, fitted to triaxial compression) and the
+  // extension meridian (r = psi). psi(P) = 3 / (3 + dS/dP): the ratio of Mohr-Coulomb's meridians,
+  // (3 - sin phi) / (3 + sin phi), for the friction of the current compressive meridian's local slope
+  // (e.g. Chen and Han, Plasticity for Structural Engineers, 1988, section 5.3), clipped to [0.5, 1]
+  // (convexity of the ellipse); for P < 0 psi takes its value at P = 0.
+  WillamWarnke,
+};
+
+// [choice] A principal-stress (Rankine) limit sigma_1 <= T_R (1 - d+) (AfcOptions::principal_stress_limit),
+// applied after the return onto S as a second plastic return of the deviator at fixed pressure (the
+// closest admissible deviator, no dilatancy), never by scaling a stored stress.
+enum class PrincipalStressLimit {
+  Off,                        // [default] the paper's surfaces alone
+  UniaxialTensileStrength,    // T_R = f't, eq. 35's uniaxial tensile strength of the intact material (15.9 MPa)
+  Tmax,                       // T_R = Tmax (the form first asked for; below f't, so it lowers f't to Tmax)
+};
+
+// [choice] How a point that opened past the tensile cutoff takes pressure again (AfcOptions::opened_volume).
+enum class OpenedVolume {
+  // [default of the paper-model case] P from the density ratio to the intact density: a point that opened
+  // by mu < 0 carries no pressure until it is pushed back to its closed density (a closure slack equal to
+  // the opened volume); a fully failed open point is stress-free.
+  Recoverable,
+  // The volumetric strain opened past the cutoff is kept as a permanent (plastic) opening mu_o <= 0 and
+  // the hydrostat reads mu - mu_o: re-compression loads from the opened state at once along the
+  // unloading line (as HJC's incremental pressure clipped at the tensile limit forgets opened volume).
+  Permanent,
 };
 
 // Where the tensile damage d+ comes from.
@@ -44,8 +80,14 @@ struct AfcOptions {
   bool cap_strength_with_c5 = false;
   // [choice] eq. 36's floor of the pressure term: d- += d eps_p / max(P D1, eps_min) + ...
   double damage_eps_min = 0.01;
-  // [choice] how d+ acts on the stress: eq. 21's split (default) or the tensile cutoff and eq. 35.
-  TensileDegradation tensile_degradation = TensileDegradation::Split;
+  // [choice] how d+ acts on the stress: the tensile cutoff and eq. 35 (default, the paper's) or eq. 21's split.
+  TensileDegradation tensile_degradation = TensileDegradation::Cutoff;
+  // [choice] third-invariant dependence of the strength (off by default).
+  LodeDependence lode = LodeDependence::Off;
+  // [choice] principal-stress limit of damaged material (off by default; needs the cutoff coupling).
+  PrincipalStressLimit principal_stress_limit = PrincipalStressLimit::Off;
+  // [choice] how opened material takes pressure again.
+  OpenedVolume opened_volume = OpenedVolume::Recoverable;
   // [choice] the SDEL as printed (false, default: d+(0) = 1/(1 + nu exp(lambda chi e_i)) > 0, about
   // 2e-5 at 3 mm) or shifted to start at exactly 0 (true, uhpc::sdel_damage_zero_anchored).
   bool sdel_zero_anchored = false;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/LU>  // determinant
+
 namespace uhpc::macro {
 
 double effective_deviatoric_rate(const Mat3& strain_increment, double dt_s) {
@@ -33,6 +35,36 @@ double afc_strength_tension(double P, double d_minus, double d_plus, double F, c
   if (!(T > 1e-12 * p.Tmax_Pa)) return 0.0;  // fully cracked: no strength in tension (the 0/0 guard)
   const double ratio = std::clamp((T + P) / T, 0.0, 1.0);
   return std::max(F * cap((p.C1_Pa - p.C2_Pa) * (1.0 - d_minus), p) * ratio, 0.0);
+}
+
+double lode_cos3theta(const Mat3& s) {
+  const double q2 = 1.5 * s.cwiseProduct(s).sum();
+  if (!(q2 > 0.0)) return 1.0;
+  const double q = std::sqrt(q2);
+  return std::clamp(13.5 * s.determinant() / (q2 * q), -1.0, 1.0);
+}
+
+double willam_warnke_factor(double cos3theta, double e) {
+  if (e >= 1.0) return 1.0;
+  // theta in [0, pi/3] from the extension meridian (theta = 0, r = e) to the compressive one (r = 1).
+  const double c = std::cos(std::acos(std::clamp(cos3theta, -1.0, 1.0)) / 3.0);
+  const double a = 1.0 - e * e;
+  const double root = std::sqrt(std::max(4.0 * a * c * c + 5.0 * e * e - 4.0 * e, 0.0));
+  return (2.0 * a * c + (2.0 * e - 1.0) * root) / (4.0 * a * c * c + (1.0 - 2.0 * e) * (1.0 - 2.0 * e));
+}
+
+double lode_psi(double P, double d_minus, double F, const AfcParams& p) {
+  const double Pc = std::max(P, 0.0);
+  const double b = p.C2_Pa + (p.C1_Pa - p.C2_Pa) * d_minus;
+  const double bracket = p.C1_Pa - b * std::exp(-p.An_1_Pa * Pc) + p.C4 * Pc;
+  const bool capped = p.options.cap_strength_with_c5 && bracket > p.C5_Pa;
+  const double slope = capped ? 0.0 : F * (b * p.An_1_Pa * std::exp(-p.An_1_Pa * Pc) + p.C4);
+  return std::clamp(3.0 / (3.0 + slope), 0.5, 1.0);
+}
+
+double afc_uniaxial_tensile_strength(const AfcParams& p) {
+  const double a = cap(p.C1_Pa - p.C2_Pa, p);
+  return a / (1.0 + a / (3.0 * p.Tmax_Pa));
 }
 
 double afc_strength(double P, double d_minus, double d_plus, double F, const AfcParams& p) {

@@ -26,4 +26,19 @@ double afc_strength_tension(double pressure_Pa, double d_minus, double d_plus, d
 // the cutoff is 0, an expanded point sits at P = 0 and must still get eq. 35's limit, S = 0.
 double afc_strength(double pressure_Pa, double d_minus, double d_plus, double rate_factor, const AfcParams& p);
 
+// The third-invariant factor of LodeDependence::WillamWarnke (afc_params.hpp): the strength on the
+// deviator s is S(P) r(theta, psi).
+//   cos(3 theta) = 27 J3 / (2 q^3) of the deviator (1: extension, one principal value above the other
+//   two; -1: compression, as in a triaxial compression test); 1 for a zero deviator.
+double lode_cos3theta(const Mat3& deviator);
+//   Willam-Warnke's ellipse: r = 1 at cos 3theta = -1, r = psi at cos 3theta = 1, psi in [0.5, 1].
+double willam_warnke_factor(double cos3theta, double psi);
+//   psi(P) = 3 / (3 + dS/dP), dS/dP the slope of eq. 33's meridian (with the rate factor and the C5 cap)
+//   at max(P, 0), clipped to [0.5, 1].
+double lode_psi(double pressure_Pa, double d_minus, double rate_factor, const AfcParams& p);
+
+// f't: the uniaxial tensile strength of the intact, quasi-static surface (eq. 35 with d- = d+ = 0 and
+// F = 1 on the path P = -sigma / 3, q = sigma): sigma = a / (1 + a / (3 Tmax)), a = S(0).
+double afc_uniaxial_tensile_strength(const AfcParams& p);
+
 }  // namespace uhpc::macro

@@ -44,6 +44,7 @@ struct Moduli {
 struct DissipationParts {
   double plastic = 0.0;   // deviatoric plastic work
   double crushing = 0.0;  // work of pore collapse on the hydrostat (volumetric plastic work)
+  double opening = 0.0;   // work of the tensile cutoff over volume opened past it and kept (AFC option)
 };
 
 // Half the complementary energy product 1/2 a : C^-1 : b of an isotropic compliance (K, G): with

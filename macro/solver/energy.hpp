@@ -7,7 +7,7 @@
 //                dissipated by their return
 //   material_stored   elastic (free) energy the laws hold now, sum V Law::stored_energy
 //   material_dissipated   the rest of the material's stress work: internal - stabilization -
-//                material_stored, dissipated by the laws; of it plastic and crushing are what the laws
+//                material_stored, dissipated by the laws; of it plastic, crushing and opening are what the laws
 //                book (Law::dissipation), released() the remainder: energy a law gave up without
 //                booking it (damage: the tension released by d+, the drop of the cutoff)
 //   viscous      work of the artificial bulk viscosity (dissipated)
@@ -35,6 +35,7 @@ struct EnergyLedger {
   double material_dissipated = 0.0;
   double plastic = 0.0;
   double crushing = 0.0;
+  double opening = 0.0;
   double viscous = 0.0;
   double external = 0.0;
   double contact = 0.0;
@@ -45,7 +46,7 @@ struct EnergyLedger {
   std::array<double, 3> momentum_initial{};
   std::array<double, 3> external_impulse{};
 
-  double released() const { return material_dissipated - plastic - crushing; }
+  double released() const { return material_dissipated - plastic - crushing - opening; }
   double stabilization_dissipated() const { return stabilization - stabilization_stored; }
   double balance_error() const { return kinetic + internal + viscous + contact - external - kinetic_initial; }
 };

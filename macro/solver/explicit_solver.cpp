@@ -388,16 +388,17 @@ void ExplicitSolver::update_momentum_and_kinetic() {
 void ExplicitSolver::update_material_books() {
   const std::int64_t n = static_cast<std::int64_t>(p_.n);
   const bool nsni = !p_.stress_grad.empty();
-  double stored = 0.0, plastic = 0.0, crushing = 0.0, stab = 0.0;
+  double stored = 0.0, plastic = 0.0, crushing = 0.0, opening = 0.0, stab = 0.0;
   std::visit(
       [&](const auto& block) {
-#pragma omp parallel for schedule(static) reduction(+ : stored, plastic, crushing, stab) if (n >= kParallelMinParticles)
+#pragma omp parallel for schedule(static) reduction(+ : stored, plastic, crushing, opening, stab) if (n >= kParallelMinParticles)
         for (std::int64_t i = 0; i < n; ++i) {
           const auto& st = block.state[static_cast<std::size_t>(i)];
           stored += block.law.stored_energy(st) * p_.volume[i];
           const DissipationParts parts = block.law.dissipation(st);
           plastic += parts.plastic * p_.volume0[i];
           crushing += parts.crushing * p_.volume0[i];
+          opening += parts.opening * p_.volume0[i];
           if (nsni) stab += stabilization_energy(block.law.moduli(st), i);
         }
       },
@@ -406,6 +407,7 @@ void ExplicitSolver::update_material_books() {
   ledger_.material_dissipated = ledger_.internal - ledger_.stabilization - stored;
   ledger_.plastic = plastic;
   ledger_.crushing = crushing;
+  ledger_.opening = opening;
   ledger_.stabilization_stored = stab;
 }
 

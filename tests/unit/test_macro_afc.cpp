@@ -16,7 +16,7 @@
 namespace uhpc::macro {
 namespace {
 
-// As shipped: the effective tensile strain drives the SDEL, d+ acts through eq. 21's split.
+// As shipped: the effective tensile strain drives the SDEL, d+ acts through the cutoff and eq. 35.
 AfcParams paper_params() {
   return load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json");
 }
@@ -93,8 +93,8 @@ TEST(AfcHydrostat, PathThroughCrushingAndLockingAndBack) {
   pt.volumetric_step_to(mu_p, dt);
   EXPECT_NEAR(P(), 0.0, 1e-6 * P_top);
   pt.volumetric_step_to(mu_p - 1e-4, dt);
-  // (hydrostatic tension is all tensile: the split hands on (1 - d+) of it)
-  EXPECT_NEAR(P(), (1 - pt.state().d_plus) * std::max(-Ku * 1e-4, -p.Tmax_Pa), 1e-6 * P_top);
+  // (down to the damaged cutoff -Tmax (1 - d+) of the default coupling)
+  EXPECT_NEAR(P(), std::max(-Ku * 1e-4, -p.Tmax_Pa * (1 - pt.state().d_plus)), 1e-6 * P_top);
 
   // Reloading follows the same line back to the curve, then the curve again (continuity).
   pt.volumetric_step_to(0.05, dt);

@@ -32,7 +32,10 @@ TEST(AfcConfig, ShippedFilesGiveTable6AndTheHandoff) {
   EXPECT_EQ(p.options.rate_factor_floor, 1.0);
   EXPECT_FALSE(p.options.cap_strength_with_c5);
   EXPECT_EQ(p.options.damage_eps_min, 0.01);
-  EXPECT_EQ(p.options.tensile_degradation, TensileDegradation::Split);
+  EXPECT_EQ(p.options.tensile_degradation, TensileDegradation::Cutoff);
+  EXPECT_EQ(p.options.lode, LodeDependence::Off);
+  EXPECT_EQ(p.options.principal_stress_limit, PrincipalStressLimit::Off);
+  EXPECT_EQ(p.options.opened_volume, OpenedVolume::Recoverable);
   EXPECT_FALSE(p.options.sdel_zero_anchored);
   EXPECT_EQ(p.options.tensile_damage, TensileDamage::Sdel);
   EXPECT_FALSE(p.options.wave_speed_from_unloading_modulus);
@@ -43,15 +46,35 @@ TEST(AfcConfig, OptionsBlockIsRead) {
   const AfcParams p = load_afc_params(
       kAfc, kSdel,
       {"options.rate_factor_floor=0", "options.cap_strength_with_c5=true", "options.damage_eps_min=0.02",
-       "options.tensile_degradation=cutoff", "options.sdel_zero_anchored=true", "options.tensile_damage=off",
+       "options.tensile_degradation=split", "options.lode=willam_warnke", "options.opened_volume=permanent",
+       "options.sdel_zero_anchored=true", "options.tensile_damage=off",
        "options.wave_speed_from_unloading_modulus=true"});
   EXPECT_EQ(p.options.rate_factor_floor, 0.0);
   EXPECT_TRUE(p.options.cap_strength_with_c5);
   EXPECT_EQ(p.options.damage_eps_min, 0.02);
-  EXPECT_EQ(p.options.tensile_degradation, TensileDegradation::Cutoff);
+  EXPECT_EQ(p.options.tensile_degradation, TensileDegradation::Split);
+  EXPECT_EQ(p.options.lode, LodeDependence::WillamWarnke);
+  EXPECT_EQ(p.options.opened_volume, OpenedVolume::Permanent);
   EXPECT_TRUE(p.options.sdel_zero_anchored);
   EXPECT_EQ(p.options.tensile_damage, TensileDamage::Off);
   EXPECT_TRUE(p.options.wave_speed_from_unloading_modulus);
+  for (const auto& [text, limit] : {std::pair{"tmax", PrincipalStressLimit::Tmax},
+                                    std::pair{"uniaxial_tensile_strength", PrincipalStressLimit::UniaxialTensileStrength}})
+    EXPECT_EQ(load_afc_params(kAfc, kSdel, {std::string("options.principal_stress_limit=") + text})
+                  .options.principal_stress_limit,
+              limit);
+}
+
+TEST(AfcConfig, OptionsOverrideABaseKeyByKey) {
+  // A case's material.options over the constants file's options: absent keys keep the base's values.
+  AfcOptions base;
+  base.lode = LodeDependence::WillamWarnke;
+  base.damage_eps_min = 0.05;
+  const uhpc::Config cfg = uhpc::Config::from_json(nlohmann::json{{"tensile_degradation", "split"}}, "case.json");
+  const AfcOptions o = afc_options_from_config(cfg, base);
+  EXPECT_EQ(o.tensile_degradation, TensileDegradation::Split);
+  EXPECT_EQ(o.lode, LodeDependence::WillamWarnke);
+  EXPECT_EQ(o.damage_eps_min, 0.05);
 }
 
 TEST(AfcConfig, BadInputNamesFileKeyAndReason) {
@@ -60,6 +83,11 @@ TEST(AfcConfig, BadInputNamesFileKeyAndReason) {
   EXPECT_EQ(error_with({"options.tensile_damage=maybe"}),
             kAfc + ": key 'options.tensile_damage': value 'maybe' is not one of: sdel, off");
   EXPECT_EQ(error_with({"options.typo=1"}).rfind(kAfc + ": key 'options.typo': unknown key", 0), 0u);
+  EXPECT_EQ(error_with({"options.lode=mohr"}),
+            kAfc + ": key 'options.lode': value 'mohr' is not one of: off, willam_warnke");
+  EXPECT_EQ(error_with({"options.tensile_degradation=split", "options.principal_stress_limit=tmax"}),
+            kAfc + ": key 'options.principal_stress_limit': needs tensile_degradation 'cutoff' (with the split the "
+                   "tension is already degraded by 1 - d+)");
   EXPECT_EQ(error_with({"C2_Pa=1e9"}), kAfc + ": key 'C2_Pa': value 1000000000 must be < C1_Pa = 957800000");
   EXPECT_EQ(error_with({"C9=0.005"}), kAfc + ": key 'C9': value 0.005 must be > C7 = 0.00781");
   EXPECT_NE(error_with({"C8_Pa=1e10"}).find("key 'C8_Pa': value 1e+10 must be >= K_e"), std::string::npos);

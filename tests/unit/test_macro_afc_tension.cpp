@@ -21,6 +21,13 @@ using Driver = PointDriver<AfcMaterial>;
 
 AfcParams shipped() { return load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json"); }
 
+// Eq. 21's split applied to the macro stress (the option TensileDegradation::Split).
+AfcParams with_split() {
+  AfcParams p = shipped();
+  p.options.tensile_degradation = TensileDegradation::Split;
+  return p;
+}
+
 AfcParams with_measure(TensileStrainMeasure m) {
   AfcParams p = shipped();
   p.strain_measure = m;
@@ -95,10 +102,10 @@ TEST(AfcTensileDriver, UniaxialTensionGivesTheSdelCurve) {
 }
 
 TEST(AfcTensileDriver, UniaxialStressTensionFollowsTheMicrocellLawUpToAfcsOwnStrength) {
-  // Under uniaxial stress the split hands on sigma = (1 - d+) E e, the homogenised response the SDEL
+  // (The split option.) Under uniaxial stress the split hands on sigma = (1 - d+) E e, the homogenised response the SDEL
   // was fitted to (eq. 20: sigma_bar = (1 - d) E0_bar e), until the effective stress reaches the
   // undamaged AFC tensile strength (eq. 35, 15.94 MPa); its peak is the SDEL's.
-  const AfcParams p = shipped();
+  const AfcParams p = with_split();
   const AfcMaterial law(p);
   const Elastic el = elastic(p);
   Driver pt(law, kSpacing);
@@ -177,7 +184,7 @@ Mat3 split_of(const Mat3& s, double factor) {
 }
 
 TEST(AfcSplit, TheEffectiveStressIsTheUndamagedAfcStressAndTheSolverGetsItsSplit) {
-  const AfcParams p = shipped();
+  const AfcParams p = with_split();
   AfcParams undamaged = p;
   undamaged.options.tensile_damage = TensileDamage::Off;
   undamaged.options.tensile_degradation = TensileDegradation::Cutoff;
@@ -197,7 +204,7 @@ TEST(AfcSplit, TheEffectiveStressIsTheUndamagedAfcStressAndTheSolverGetsItsSplit
 }
 
 TEST(AfcSplit, NothingTensileIsLeftAtFullDamageAndNoDivisionBlowsUp) {
-  const AfcMaterial law(shipped());
+  const AfcMaterial law(with_split());
   Driver pt(law, kSpacing);
   Mat3 de = Mat3::Zero();
   de(0, 0) = 1e-6;
@@ -229,7 +236,7 @@ TEST(AfcSplit, TheEnergyOfTheSdelIsReleasedOnceAndNothingIsLeftStored) {
   // energy the SDEL dissipates per volume, the integral of (1 - d(e)) E e de (computed here on its
   // own), and the law holds none of it at the end: the books (work - stored - plastic - crushing)
   // count it once, as released energy.
-  AfcParams p = shipped();
+  AfcParams p = with_split();
   p.Tmax_Pa = 1e12;
   p.C1_Pa = p.C2_Pa + 1e12;
   const AfcMaterial law(p);
@@ -262,7 +269,7 @@ TEST(AfcSplit, TheEnergyOfTheSdelIsReleasedOnceAndNothingIsLeftStored) {
 
 TEST(AfcSplit, StoredEnergyIsEq21sFreeEnergy) {
   // Psi = (1 - d+) Psi0+ + Psi0-, Psi0+- = 1/2 sigma_e+- : eps_e (Wu-Li-Faria), for a state with both signs.
-  const AfcParams p = shipped();
+  const AfcParams p = with_split();
   const AfcMaterial law(p);
   Driver pt(law, kSpacing);
   Mat3 de = Mat3::Zero();

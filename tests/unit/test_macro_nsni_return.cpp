@@ -79,13 +79,21 @@ TEST(NsniGradientReturn, AfcReportsItsReturnFactorAndTheTensileCutoff) {
   const double S = von_mises(st.effective_stress);  // the strength bounds the effective stress
   const double q_trial = S + 2.0 * p.shear_modulus_Pa * std::sqrt(1.5 * 2.0) * 0.5e-5;
   EXPECT_NEAR(law.moduli(st).deviatoric_return, S / q_trial, 1e-9);
-  // Expansion past the tensile cutoff: the pressure is held at -Tmax (1 - d+).
+  // Expansion past the tensile cutoff: the pressure is held at -Tmax (1 - d+) (the default coupling).
   PointDriver<AfcMaterial> open(law, 0.003);
   open.volumetric_step_to(-1e-3, 1e-6);
   EXPECT_TRUE(law.moduli(open.state()).pressure_fixed);
-  // (with the split the cutoff is the undamaged -Tmax on the effective stress; d+ acts through the split)
-  EXPECT_NEAR(pressure_of(open.state().effective_stress), -p.Tmax_Pa, 1e-6 * p.Tmax_Pa);
-  EXPECT_EQ(law.moduli(open.state()).tension_factor, 1.0 - open.state().d_plus);
+  EXPECT_NEAR(pressure_of(open.state().stress), -p.Tmax_Pa * (1.0 - open.state().d_plus), 1e-6 * p.Tmax_Pa);
+  EXPECT_EQ(law.moduli(open.state()).tension_factor, 1.0);
+  // With the split the cutoff is the undamaged -Tmax on the effective stress; d+ acts through the split.
+  AfcParams split = p;
+  split.options.tensile_degradation = TensileDegradation::Split;
+  const AfcMaterial split_law(split);
+  PointDriver<AfcMaterial> split_open(split_law, 0.003);
+  split_open.volumetric_step_to(-1e-3, 1e-6);
+  EXPECT_TRUE(split_law.moduli(split_open.state()).pressure_fixed);
+  EXPECT_NEAR(pressure_of(split_open.state().effective_stress), -p.Tmax_Pa, 1e-6 * p.Tmax_Pa);
+  EXPECT_EQ(split_law.moduli(split_open.state()).tension_factor, 1.0 - split_open.state().d_plus);
 }
 
 // The returned gradient is the derivative of the law's own update: for a state on the strength surface,
@@ -211,7 +219,8 @@ TEST(NsniGradientReturn, AfcBulkModulusIsTheHydrostatTangentInCrushing) {
 // through the split, (split(sigma_e(de + eps delta)) - split(sigma_e(de))) / eps, at a state whose
 // history strain is not exceeded (d+ fixed) and with tensile and compressive principal stresses.
 TEST(NsniGradientReturn, TheSplitOfTheGradientIsTheDerivativeOfTheSplitStress) {
-  const AfcParams p = load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json");
+  AfcParams p = load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json");
+  p.options.tensile_degradation = TensileDegradation::Split;
   const AfcMaterial law(p);
   PointDriver<AfcMaterial> pt(law, 0.003);
   Mat3 stretch = Mat3::Zero();
