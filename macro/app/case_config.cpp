@@ -77,6 +77,7 @@ SolverOptions read_solver(const Config& c) {
   o.support_factor = c.number("support_factor", Range::closed(1.2, 3.0));
   o.cfl = c.number("cfl", Range{0.0, 1.0, true, false});
   o.stabilization = c.flag("nsni") ? Stabilization::Nsni : Stabilization::None;
+  o.nsni_coefficient = c.number("nsni_coefficient", Range{0.0, 4.0, true, false});
   const std::string strain = c.choice("strain_configuration", {"midpoint", "end", "endpoint_average"});
   o.strain_configuration = strain == "midpoint" ? StrainConfiguration::Midpoint
                            : strain == "end"    ? StrainConfiguration::End

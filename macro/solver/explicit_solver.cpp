@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "solver/kinematics.hpp"
+#include "solver/nsni_moment.hpp"
 #include "solver/stress_update.hpp"
 
 namespace uhpc::macro {
@@ -67,7 +68,7 @@ StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& for
       }
       update_stress(block, p, i, dt, viscosity, sums);
       InternalForce::add_row(shapes, i, p.stress.data(), p.bulk_q.data(), p.volume.data(),
-                             nsni ? p.force_stress_grad().data() : nullptr, buf);
+                             nsni ? p.force_stress_grad().data() : nullptr, buf, p.nsni_moment_scale);
     }
     force.finish(p.n, p.f_int.data());
     add_sums(sums, work, visc, stab, dt_min, inverted);
@@ -100,6 +101,7 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
   f_contact_old_.assign(3 * p_.n, 0.0);
   if (p_.f_contact.size() != 3 * p_.n) p_.f_contact.assign(3 * p_.n, 0.0);
   if (options_.stabilization == Stabilization::Nsni) {
+    p_.nsni_moment_scale = options_.nsni_coefficient;
     p_.stress_grad.assign(27 * p_.n, 0.0);
     p_.vel_grad_grad.assign(27 * p_.n, 0.0);
     if (std::visit([](const auto& b) { return b.law.splits_stress(); }, material_))
@@ -292,7 +294,7 @@ void ExplicitSolver::compute_accelerations(double dt) {
 void ExplicitSolver::compute_forces(double dt, double dt_next, bool internal) {
   if (internal)
     force_.compute(shapes_, p_.stress.data(), p_.bulk_q.data(), p_.volume.data(), p_.n, p_.f_int.data(),
-                   p_.stress_grad.empty() ? nullptr : p_.force_stress_grad().data());
+                   p_.stress_grad.empty() ? nullptr : p_.force_stress_grad().data(), p_.nsni_moment_scale);
   const std::int64_t n = static_cast<std::int64_t>(p_.n);
   double wall_total = 0.0;
   // The force of wall w on particle i (added to fe), its magnitude returned.
@@ -414,7 +416,7 @@ void ExplicitSolver::update_material_books() {
 double ExplicitSolver::stabilization_energy(const Moduli& mod, std::int64_t i) const {
   using RowMat = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>;
   const double v = p_.volume[i];
-  const double moment = std::cbrt(v * v * v * v * v) / 12.0;
+  const double moment = nsni_moment(v, p_.nsni_moment_scale);
   const std::vector<double>& force = p_.force_stress_grad();
   double e = 0.0;
   for (int d = 0; d < 3; ++d)

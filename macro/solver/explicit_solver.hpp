@@ -63,6 +63,9 @@ struct SolverOptions {
   StrainConfiguration strain_configuration = StrainConfiguration::EndpointAverage;
   BulkViscosity viscosity;     // {0, 0} switches it off
   Stabilization stabilization = Stabilization::Nsni;
+  // [choice] c of the NSNI moments M_L = c V_L^(5/3) / 12 (nsni_moment.hpp): 1 is Hillman and Chen's
+  // second moment of the particle's cell; a smaller c weakens the stabilization (and its dissipation).
+  double nsni_coefficient = 1.0;
   SecondGradientOptions second_gradients;  // NSNI strain gradients (quadratic implicit second derivatives)
   // Verlet skin of the neighbour search, as a fraction of the smallest support radius (ShapeCache::skin):
   // candidate lists are searched with the radii grown by it and reused, filtered exactly, until some

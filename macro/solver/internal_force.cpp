@@ -1,6 +1,7 @@
 #include "solver/internal_force.hpp"
 
 #include "solver/kinematics.hpp"
+#include "solver/nsni_moment.hpp"
 #include "solver/parallel.hpp"
 #include "solver/row_simd.hpp"
 #include "uhpc/parallel.hpp"
@@ -13,14 +14,15 @@
 namespace uhpc::macro {
 
 void InternalForce::compute(const ShapeCache& shapes, const double* stress, const double* bulk_q,
-                            const double* volume, std::size_t n, double* f, const double* stress_grad) {
+                            const double* volume, std::size_t n, double* f, const double* stress_grad,
+                            double nsni_coefficient) {
   if (!shapes.has_second_gradients()) stress_grad = nullptr;
   const std::int64_t nn = static_cast<std::int64_t>(n);
 #pragma omp parallel if (nn >= kParallelMinParticles)
   {
     double* buf = begin(n);
 #pragma omp for schedule(static, kRowChunk)
-    for (std::int64_t L = 0; L < nn; ++L) add_row(shapes, L, stress, bulk_q, volume, stress_grad, buf);
+    for (std::int64_t L = 0; L < nn; ++L) add_row(shapes, L, stress, bulk_q, volume, stress_grad, buf, nsni_coefficient);
     finish(n, f);
   }
 }
@@ -38,7 +40,7 @@ double* InternalForce::begin(std::size_t n) {
 }
 
 void InternalForce::add_row(const ShapeCache& shapes, std::int64_t L, const double* stress, const double* bulk_q,
-                            const double* volume, const double* stress_grad, double* buf) {
+                            const double* volume, const double* stress_grad, double* buf, double nsni_coefficient) {
   double s[9];
   const double q = bulk_q ? bulk_q[L] : 0.0;
   for (int m = 0; m < 9; ++m) s[m] = volume[L] * stress[9 * L + m];
@@ -52,7 +54,7 @@ void InternalForce::add_row(const ShapeCache& shapes, std::int64_t L, const doub
   }
   // tg[j][m] = M_L * sum over the pairs (d, k) with sym_index m of dsigma_jk/dx_d: Psi^(dk) is
   // symmetric in (d, k), so the off-diagonal pairs add up.
-  const double moment = std::cbrt(volume[L] * volume[L] * volume[L] * volume[L] * volume[L]) / 12.0;
+  const double moment = nsni_moment(volume[L], nsni_coefficient);
   const double* sg = stress_grad + 27 * L;
   double tg[3][6];
   for (int j = 0; j < 3; ++j) {

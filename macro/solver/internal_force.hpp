@@ -18,10 +18,11 @@ class InternalForce {
  public:
   // f (3n) from the stress (9n), bulk viscosity pressure (n, may be null) and volumes (n). With
   // `stress_grad` (27n, NSNI; shapes must hold second gradients) adds the stabilization force
-  //   f_Ij -= sum_L M_L sum_d sum_k dsigma_jk/dx_d (x_L) Psi^(dk)_I(x_L),   M_L = V_L^(5/3) / 12,
-  // the second moment of a cube of volume V_L about its centre in each direction.
+  //   f_Ij -= sum_L M_L sum_d sum_k dsigma_jk/dx_d (x_L) Psi^(dk)_I(x_L),   M_L = c V_L^(5/3) / 12,
+  // the second moment of a cube of volume V_L about its centre in each direction times the NSNI
+  // coefficient c (nsni_moment.hpp).
   void compute(const ShapeCache& shapes, const double* stress, const double* bulk_q, const double* volume,
-               std::size_t n, double* f, const double* stress_grad = nullptr);
+               std::size_t n, double* f, const double* stress_grad = nullptr, double nsni_coefficient = 1.0);
 
   // The same in parts, for a caller that adds each row while the row's gradients are still in cache.
   // Inside a parallel region: begin on every thread (its zeroed buffer), add_row for the rows L of an
@@ -29,7 +30,7 @@ class InternalForce {
   // buffers then receive the rows as compute gives them: the same f, bitwise.
   double* begin(std::size_t n);
   static void add_row(const ShapeCache& shapes, std::int64_t L, const double* stress, const double* bulk_q,
-                      const double* volume, const double* stress_grad, double* buf);
+                      const double* volume, const double* stress_grad, double* buf, double nsni_coefficient);
   void finish(std::size_t n, double* f);
 
  private:

@@ -44,6 +44,8 @@ struct Particles {
   const std::vector<double>& force_stress_grad() const {
     return stress_grad_nominal.empty() ? stress_grad : stress_grad_nominal;
   }
+  // The scale of the NSNI moments (SolverOptions::nsni_coefficient): M_L = scale V_L^(5/3) / 12.
+  double nsni_moment_scale = 1.0;
 
   // Allocates every field for the particles of `body` at rest, with density rho0 and a_I = factor h_I.
   static Particles from_body(const ParticleBody& body, double density_kg_m3, double support_factor);

@@ -31,6 +31,7 @@
 #include "solver/parallel.hpp"
 #include "solver/bulk_viscosity.hpp"
 #include "solver/nsni_gradient_return.hpp"
+#include "solver/nsni_moment.hpp"
 #include "solver/particles.hpp"
 
 namespace uhpc::macro {
@@ -79,7 +80,7 @@ void update_stress(Block& block, Particles& p, std::int64_t i, double dt, const 
     const Moduli mod = block.law.moduli(state);
     const StressGradientReturn gradient_return(block.law.effective_stress(state), mod);
     const double lambda = mod.bulk_Pa - 2.0 / 3.0 * mod.shear_Pa;
-    const double moment = std::cbrt(v_mid * v_mid * v_mid * v_mid * v_mid) / 12.0;
+    const double moment = nsni_moment(v_mid, p.nsni_moment_scale);
     const bool split = !p.stress_grad_nominal.empty();
     for (int d = 0; d < 3; ++d) {
       const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> G(p.vel_grad_grad.data() + 27 * i + 9 * d);

@@ -2,6 +2,7 @@
 // affine fields; nodal-integration forces sum to zero (linear momentum) and have zero moment (angular
 // momentum); a uniform stress gives zero force at interior particles of a regular lattice (the force
 // half of the linear patch test); a rigid motion creates no strain rate.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -14,6 +15,7 @@
 
 #include "bodies/generators.hpp"
 #include "solver/internal_force.hpp"
+#include "solver/nsni_moment.hpp"
 #include "solver/kinematics.hpp"
 #include "solver/particles.hpp"
 #include "solver/shape_cache.hpp"
@@ -129,6 +131,33 @@ TEST(MacroInternalForce, UniformStressLeavesInteriorOfRegularLatticeUnloaded) {
   }
   std::printf("uniform stress, 10^3 lattice: interior |f| / (sigma h^2) = %.3e\n", worst_interior);
   EXPECT_LT(worst_interior, 1e-12);
+}
+
+// The NSNI coefficient c scales the moments M_L = c V^(5/3) / 12 and nothing else: with no stress and a
+// stress gradient only, the force is linear in c.
+TEST(MacroInternalForce, TheNsniForceScalesWithTheCoefficient) {
+  const double h = 0.01;
+  Particles p = Particles::from_body(box_body(6 * h, 6 * h, 6 * h, h), 1000.0, 2.5);
+  std::mt19937 rng(45);
+  std::uniform_real_distribution<double> u(-1e8, 1e8);
+  std::vector<double> grad(27 * p.n);
+  for (double& g : grad) g = u(rng);
+  std::fill(p.stress.begin(), p.stress.end(), 0.0);
+  ShapeCache shapes;
+  const SecondGradientOptions second;
+  shapes.rebuild(rk::Options{}, p.x.data(), p.support.data(), p.n, &second);
+  std::vector<double> f1(3 * p.n), fc(3 * p.n);
+  InternalForce force;
+  force.compute(shapes, p.stress.data(), nullptr, p.volume.data(), p.n, f1.data(), grad.data(), 1.0);
+  force.compute(shapes, p.stress.data(), nullptr, p.volume.data(), p.n, fc.data(), grad.data(), 0.3);
+  double worst = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < f1.size(); ++i) {
+    worst = std::max(worst, std::fabs(fc[i] - 0.3 * f1[i]));
+    scale = std::max(scale, std::fabs(f1[i]));
+  }
+  ASSERT_GT(scale, 0.0);
+  EXPECT_LT(worst / scale, 1e-14);
+  EXPECT_DOUBLE_EQ(nsni_moment(8.0, 0.3), 0.3 * 32.0 / 12.0);  // 8^(5/3) = 32
 }
 
 // A body above the solver's parallel threshold: forces on 1 and 2 threads (per-thread buffers summed)
