@@ -16,6 +16,7 @@ uhpc_add_test(unit unit/test_macro_afc_allocations.cpp uhpc_macro_materials)
 uhpc_add_test(unit unit/test_macro_afc_tension.cpp uhpc_macro_materials)
 uhpc_add_test(unit unit/test_macro_afc_failed.cpp uhpc_macro_materials)
 uhpc_add_test(unit unit/test_macro_afc_lode_limit.cpp uhpc_macro_materials)
+uhpc_add_test(unit unit/test_macro_afc_tensile_rate.cpp uhpc_macro_materials)
 # Sphere contact, step-collapse guard, robustness exits and the uhpc-macro program.
 uhpc_add_test(verification verification/test_macro_sphere_contact.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_robustness.cpp uhpc_macro_solver)

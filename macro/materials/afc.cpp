@@ -31,6 +31,14 @@ Mat3 scale_tensile_part(const Mat3& stress, double factor) {
   return out;
 }
 
+// The largest principal value of the strain increment over dt, 0 when nothing stretches.
+double largest_principal_rate(const Mat3& de, double dt) {
+  if (!(dt > 0.0)) return 0.0;
+  Eigen::SelfAdjointEigenSolver<Mat3> es;
+  es.computeDirect(de, Eigen::EigenvaluesOnly);
+  return std::max(es.eigenvalues()[2], 0.0) / dt;
+}
+
 void require(bool ok, const char* what) {
   if (!ok) throw std::invalid_argument(std::string("AfcMaterial: ") + what);
 }
@@ -114,6 +122,7 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   // The strain the hydrostat reads: mu itself, less the permanent opening with OpenedVolume::Permanent.
   double mu_h = mu - st.opening_strain;
   const double F = afc_rate_factor(effective_deviatoric_rate(de, step.dt_s), p_);
+  const double dif = o.tensile_rate == TensileRate::Off ? 1.0 : afc_tensile_dif(largest_principal_rate(de, step.dt_s), p_);
 
   // 1. Hydrostat history.
   const double mu_max_old = st.mu_max;
@@ -144,14 +153,14 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
       st.strain += de;
       e = equivalent_tensile_strain(st.strain);
     }
-    st.tensile_strain_max = std::max(st.tensile_strain_max, e);
+    st.tensile_strain_max = std::max(st.tensile_strain_max, e / dif);
     st.d_plus = std::max(st.d_plus, sdel_damage(st.tensile_strain_max, step.spacing_m));
   }
 
   // 3. Effective stress: pressure with the cutoff, deviator returned at fixed pressure onto S. With the
   // split, d+ acts on the stress handed to the solver (5.), not on these limits.
   const double d_plus_in_limits = split ? 0.0 : st.d_plus;
-  const double T = p_.Tmax_Pa * (1.0 - d_plus_in_limits);
+  const double T = dif * p_.Tmax_Pa * (1.0 - d_plus_in_limits);
   const bool permanent = o.opened_volume == OpenedVolume::Permanent;
   if (permanent && P_uncut < -T) {
     // Opening past the cutoff is kept: the hydrostat is moved to where its line meets -T, and the work
@@ -170,7 +179,7 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   // expanded point has P = 0 but is open, and eq. 35's limit there is S = 0.
   // With the permanent opening a point held at a zero cutoff (d+ = 1) sits at P_uncut = 0 and is open.
   const bool open_side = P_uncut < 0.0 || (permanent && P_uncut <= -T);
-  double S = open_side ? afc_strength_tension(P, st.d_minus, d_plus_in_limits, F, p_)
+  double S = open_side ? afc_strength_tension(P, st.d_minus, d_plus_in_limits, F, p_, dif)
                        : afc_strength_compression(P, st.d_minus, F, p_);
   if (o.lode == LodeDependence::WillamWarnke) {
     // r >= psi >= 0.5: below psi S no deviator can yield, so the invariant is only computed above it.

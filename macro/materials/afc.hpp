@@ -5,14 +5,15 @@
 //      OpenedVolume::Permanent), mu_max = max(mu_max, mu_h), the uncut pressure P_u (afc_hydrostat.hpp,
 //      the curve or the unloading line without the tensile cutoff), the crushing strain mu_p and its
 //      dissipation;
-//   2. tensile damage: e = equivalent tensile strain by the handoff's measure, kappa = max(kappa, e),
+//   2. tensile damage: e = equivalent tensile strain by the handoff's measure, kappa = max(kappa, e / DIF)
+//      (DIF = 1 unless AfcOptions::tensile_rate),
 //      d+ = max(d+, SDEL(lambda, kappa)), lambda = h_I / l_mac (h_I = MaterialStep::spacing_m). The
 //      default measure (EffectiveTensile) reads the driver stress sigma_bar: the same material with no
 //      tensile limit (P from the whole rho/rho0 - 1, the deviator returned only on the compressive
 //      side, onto eq. 33), so e is the norm of the positive principal strains of C^-1 : <sigma_bar>+:
 //      zero in uniaxial compression, the axial strain in uniaxial tension (what the microcells were
 //      fitted to), and rotated with the material (State::driver_stress is objective);
-//   3. effective stress: T = Tmax (1 - d+) with the cutoff coupling (default), Tmax with the split;
+//   3. effective stress: T = DIF Tmax (1 - d+) with the cutoff coupling (default), DIF Tmax with the split;
 //      with the permanent opening, a P_u below -T moves mu_o so that P_u = -T (the opened volume is
 //      kept, its work T d(-mu_o) booked); P = max(P_u, -T); deviator: elastic trial s + 2G dev(d eps),
 //      radial return at fixed pressure (no dilatancy) onto S(P, d-, T, F) (afc_strength.hpp), times
@@ -49,7 +50,7 @@ class AfcMaterial {
     double crushing_strain = 0.0;  // mu_p, plastic volumetric strain of the hydrostat
     double d_minus = 0.0;          // compressive damage (eq. 36)
     double d_plus = 0.0;           // tensile damage (SDEL, eq. 37)
-    double tensile_strain_max = 0.0;  // kappa: history maximum of the equivalent tensile strain
+    double tensile_strain_max = 0.0;  // kappa: history maximum of the equivalent tensile strain (over DIF)
     double plastic_strain = 0.0;   // equivalent (deviatoric) plastic strain
     double plastic_work = 0.0;     // J per unit reference volume: deviatoric plastic work
     // OpenedVolume::Permanent: the volumetric strain opened past the tensile cutoff (<= 0, kept) and the

@@ -37,6 +37,9 @@ AfcOptions afc_options_from_config(const uhpc::Config& c, AfcOptions o) {
   if (c.has("opened_volume"))
     o.opened_volume = c.choice("opened_volume", {"recoverable", "permanent"}) == "permanent" ? OpenedVolume::Permanent
                                                                                           : OpenedVolume::Recoverable;
+  if (c.has("tensile_rate"))
+    o.tensile_rate = c.choice("tensile_rate", {"off", "fib_model_code_2010"}) == "off" ? TensileRate::Off
+                                                                                       : TensileRate::FibModelCode2010;
   if (c.has("sdel_zero_anchored")) o.sdel_zero_anchored = c.flag("sdel_zero_anchored");
   if (c.has("tensile_damage"))
     o.tensile_damage = c.choice("tensile_damage", {"sdel", "off"}) == "off" ? TensileDamage::Off : TensileDamage::Sdel;

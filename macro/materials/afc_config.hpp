@@ -11,7 +11,8 @@
 //     rate_factor_floor (>= 0), cap_strength_with_c5 (bool), damage_eps_min (> 0),
 //     tensile_degradation ("cutoff" | "split"), lode ("off" | "willam_warnke"), principal_stress_limit
 //     ("off" | "uniaxial_tensile_strength" | "tmax"; needs "cutoff"), opened_volume ("recoverable" |
-//     "permanent"), sdel_zero_anchored (bool), tensile_damage ("sdel" | "off"),
+//     "permanent"), tensile_rate ("off" | "fib_model_code_2010"), sdel_zero_anchored (bool),
+//     tensile_damage ("sdel" | "off"),
 //     wave_speed_from_unloading_modulus (bool).
 // A case file's material.options block (macro/app/material_factory.cpp) takes the same keys and
 // overrides the constants file's, key by key.

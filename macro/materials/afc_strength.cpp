@@ -30,11 +30,19 @@ double afc_strength_compression(double P, double d_minus, double F, const AfcPar
   return std::max(F * cap(s, p), 0.0);
 }
 
-double afc_strength_tension(double P, double d_minus, double d_plus, double F, const AfcParams& p) {
-  const double T = p.Tmax_Pa * (1.0 - d_plus);
+double afc_strength_tension(double P, double d_minus, double d_plus, double F, const AfcParams& p, double tensile_dif) {
+  const double T = tensile_dif * p.Tmax_Pa * (1.0 - d_plus);
   if (!(T > 1e-12 * p.Tmax_Pa)) return 0.0;  // fully cracked: no strength in tension (the 0/0 guard)
   const double ratio = std::clamp((T + P) / T, 0.0, 1.0);
   return std::max(F * cap((p.C1_Pa - p.C2_Pa) * (1.0 - d_minus), p) * ratio, 0.0);
+}
+
+double afc_tensile_dif(double rate, const AfcParams& p) {
+  if (p.options.tensile_rate == TensileRate::Off || !(rate > 0.0)) return 1.0;
+  constexpr double kRate0 = 1e-6;  // 1/s, fib Model Code 2010
+  const double r = rate / kRate0;
+  const double dif = rate <= 10.0 ? std::pow(r, 0.018) : 0.0062 * std::cbrt(r);
+  return std::max(dif, 1.0);
 }
 
 double lode_cos3theta(const Mat3& s) {

@@ -20,7 +20,12 @@ double afc_rate_factor(double strain_rate_1_s, const AfcParams& p);
 
 // The two branches. Never negative, never NaN for d-, d+ in [0, 1].
 double afc_strength_compression(double pressure_Pa, double d_minus, double rate_factor, const AfcParams& p);  // eq. 33
-double afc_strength_tension(double pressure_Pa, double d_minus, double d_plus, double rate_factor, const AfcParams& p);  // eq. 35
+// eq. 35 with T = tensile_dif Tmax (1 - d+) (tensile_dif: AfcOptions::tensile_rate, 1 without it)
+double afc_strength_tension(double pressure_Pa, double d_minus, double d_plus, double rate_factor, const AfcParams& p,
+                            double tensile_dif = 1.0);
+// The tensile dynamic increase factor of AfcOptions::tensile_rate at the largest principal strain rate
+// (1 with TensileRate::Off).
+double afc_tensile_dif(double principal_strain_rate_1_s, const AfcParams& p);
 // S at pressure P (> 0 in compression): eq. 33 for P >= 0, eq. 35 for P < 0. The law chooses the branch
 // by the sign of the hydrostat's pressure before the cutoff instead (AfcMaterial::update): with d+ = 1
 // the cutoff is 0, an expanded point sits at P = 0 and must still get eq. 35's limit, S = 0.
