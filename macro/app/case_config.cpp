@@ -48,7 +48,10 @@ ProjectileSettings read_projectile(const Config& p) {
   s.contact.model = c.choice("model", {"kinematic", "penalty"}) == "penalty" ? SphereContactModel::Penalty
                                                                             : SphereContactModel::Kinematic;
   s.contact.penalty_scale = c.number("penalty_scale", Range::positive());
-  s.contact.contact_radius_factor = c.number("contact_radius_factor", Range::open(0.0, 2.0));
+  // 0: the particles' centres meet the sphere's surface (the kinematic contact only: a penalty needs a reach).
+  s.contact.contact_radius_factor = c.number("contact_radius_factor", Range{0.0, 2.0, false, true});
+  if (s.contact.model == SphereContactModel::Penalty && s.contact.contact_radius_factor == 0.0)
+    c.fail("contact_radius_factor", "value 0 needs model 'kinematic' (the penalty acts over the contact radius)");
   s.contact.friction_coefficient = c.number("friction_coefficient", Range::closed(0.0, 2.0));
   return s;
 }

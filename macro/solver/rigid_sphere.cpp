@@ -14,8 +14,9 @@ namespace uhpc::macro {
 void RigidSphere::validate() const {
   if (!(mass_kg > 0) || !(radius_m > 0) || !std::isfinite(mass_kg) || !std::isfinite(radius_m))
     throw std::invalid_argument("RigidSphere: mass and radius must be finite and > 0");
-  if (!(contact.penalty_scale > 0) || !(contact.contact_radius_factor > 0))
-    throw std::invalid_argument("RigidSphere: penalty_scale and contact_radius_factor must be > 0");
+  if (!(contact.penalty_scale > 0) || !(contact.contact_radius_factor >= 0) ||
+      (contact.model == SphereContactModel::Penalty && !(contact.contact_radius_factor > 0)))
+    throw std::invalid_argument("RigidSphere: penalty_scale must be > 0 and contact_radius_factor >= 0 (> 0 for the penalty)");
   if (!(contact.friction_coefficient >= 0) || !std::isfinite(contact.friction_coefficient))
     throw std::invalid_argument("RigidSphere: friction_coefficient must be finite and >= 0");
   for (int d = 0; d < 3; ++d)
@@ -25,12 +26,15 @@ void RigidSphere::validate() const {
 
 void SphereContact::initialize(const RigidSphere& sphere, const Particles& p) {
   k_.resize(p.n);
-  min_contact_radius_ = std::numeric_limits<double>::infinity();
+  min_travel_distance_ = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.n; ++i) {
     // rho0 c0^2 with rho0 = m / V0: the reference stiffness, whatever the current state.
     const double rho0 = p.mass[i] / p.volume0[i];
     k_[i] = sphere.contact.penalty_scale * rho0 * p.wave_speed[i] * p.wave_speed[i] * p.spacing[i];
-    min_contact_radius_ = std::min(min_contact_radius_, sphere.contact.contact_radius_factor * p.spacing[i]);
+    // The travel limit's distance: the contact radius, not below h_I / 4 (a zero radius, the particles'
+    // centres on the sphere's surface, would stop the clock).
+    min_travel_distance_ =
+        std::min(min_travel_distance_, std::max(sphere.contact.contact_radius_factor, 0.25) * p.spacing[i]);
   }
   flagged_.assign(p.n, 0);
   // Room for the particles a shell of one contact diameter around the sphere can hold, several times
@@ -52,7 +56,7 @@ void SphereContact::initialize(const RigidSphere& sphere, const Particles& p) {
 
 double SphereContact::travel_limit(const RigidSphere& sphere) const {
   const double speed = std::sqrt(sphere.v[0] * sphere.v[0] + sphere.v[1] * sphere.v[1] + sphere.v[2] * sphere.v[2]);
-  return speed > 0.0 ? min_contact_radius_ / speed : std::numeric_limits<double>::infinity();
+  return speed > 0.0 ? min_travel_distance_ / speed : std::numeric_limits<double>::infinity();
 }
 
 SphereContactSums SphereContact::compute(const RigidSphere& sphere, const Particles& p, double dt, double dt_next,

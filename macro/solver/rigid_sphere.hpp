@@ -42,7 +42,11 @@
 // one step. Its work, f_t . w dt <= 0, is dissipated and lands in the contact energy of the ledger. The
 // torque on the sphere is not applied: zero by symmetry for a normal impact on the axis.
 // Both models also limit the step so that the sphere cannot pass through a particle's contact radius
-// between two steps: the time it takes to travel the smallest contact radius, min r_I / |v_s|.
+// between two steps: the time it takes to travel the smallest contact radius, min max(r_I, h_I / 4) / |v_s|.
+// The contact distance R + r_I sweeps, per unit of the sphere's travel, the particles whose centres lie
+// within R + r_I of its line: a mass rho0 pi (R + r_I)^2, which converges to the sphere's own
+// rho0 pi R^2 as h -> 0 for any factor, and equals it at every spacing for factor 0 (the particles'
+// centres meet the sphere's surface; kinematic model only).
 #include <cstdint>
 #include <vector>
 
@@ -56,7 +60,7 @@ enum class SphereContactModel : std::uint8_t { Kinematic, Penalty };
 struct SphereContactOptions {
   SphereContactModel model = SphereContactModel::Kinematic;
   double penalty_scale = 1.0;          // Penalty: k_I = penalty_scale * rho0 c0^2 h_I
-  double contact_radius_factor = 0.5;  // r_I = contact_radius_factor * h_I
+  double contact_radius_factor = 0.5;  // r_I = contact_radius_factor * h_I (>= 0; > 0 for the penalty)
   double friction_coefficient = 0.0;   // Coulomb mu (0: frictionless)
 };
 
@@ -107,7 +111,7 @@ class SphereContact {
                            double normal_force, double dt, double* f);
 
   std::vector<double> k_;                // penalty stiffness per particle
-  double min_contact_radius_ = 0.0;
+  double min_travel_distance_ = 0.0;
   std::vector<unsigned char> flagged_;   // kinematic: would penetrate without contact forces
   std::vector<std::int32_t> candidates_;
   std::vector<double> gap_, normal_, force_;  // per candidate (normal: 3 each)
