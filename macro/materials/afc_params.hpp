@@ -68,14 +68,16 @@ enum class TensileRate {
 
 // [choice] How a point that opened past the tensile cutoff takes pressure again (AfcOptions::opened_volume).
 enum class OpenedVolume {
-  // [default of the paper-model case] P from the density ratio to the intact density: a point that opened
+  // [default] The volumetric strain opened past the cutoff is kept as a permanent (plastic) opening
+  // mu_o <= 0 and the hydrostat reads mu - mu_o: re-compression loads from the opened state at once along
+  // the unloading line (as HJC's incremental pressure clipped at the tensile limit forgets opened
+  // volume). Why: confined rubble carries pressure from its current packing
+  // (docs/studies/2026-12-06-slow-sphere.md).
+  Permanent,
+  // [option; the paper-model case's] P from the density ratio to the intact density: a point that opened
   // by mu < 0 carries no pressure until it is pushed back to its closed density (a closure slack equal to
   // the opened volume); a fully failed open point is stress-free.
   Recoverable,
-  // The volumetric strain opened past the cutoff is kept as a permanent (plastic) opening mu_o <= 0 and
-  // the hydrostat reads mu - mu_o: re-compression loads from the opened state at once along the
-  // unloading line (as HJC's incremental pressure clipped at the tensile limit forgets opened volume).
-  Permanent,
 };
 
 // Where the tensile damage d+ comes from.
@@ -100,7 +102,7 @@ struct AfcOptions {
   // [choice] principal-stress limit of damaged material (off by default; needs the cutoff coupling).
   PrincipalStressLimit principal_stress_limit = PrincipalStressLimit::Off;
   // [choice] how opened material takes pressure again.
-  OpenedVolume opened_volume = OpenedVolume::Recoverable;
+  OpenedVolume opened_volume = OpenedVolume::Permanent;
   // [choice] rate dependence of tensile failure (off by default).
   TensileRate tensile_rate = TensileRate::Off;
   // [choice] the SDEL as printed (false, default: d+(0) = 1/(1 + nu exp(lambda chi e_i)) > 0, about

@@ -5,7 +5,7 @@ usage: check_sweep_pipeline.py --source SRC --build BUILD --out DIR
 
 Runs `make -C SRC/pipelines sweep thickness-study report` with 3 velocities (689 and 1112 m/s match Table
 5 shots, 900 m/s matches none) at 31.75 mm and a thickness study of 2 thicknesses x 2 velocities that
-reuses the sweep's runs at 31.75 mm, on data/macro_disc_afc_coarse.json with a 0.3 ms end time (5 runs,
+reuses the sweep's runs at 31.75 mm, on data/macro_disc_afc_coarse.json with a 0.4 ms end time (5 runs,
 a few seconds each). Checks: the table's residual velocities are those of each run's result.json; the
 comparison keeps the unmatched run and takes its statistics over the matched ones; the fit is physical
 and inside its bootstrap interval; a second `make sweep` runs nothing; the thickness study reuses the
@@ -40,7 +40,7 @@ def main():
     shutil.rmtree(out, ignore_errors=True)
     make = ["make", "-C", str(src / "pipelines"), "--no-print-directory", "-o", "macro-tools",  # built by ctest's build
             f"BUILD={args.build}", f"OUT={out}", f"SHOT_CASE={src}/data/macro_disc_afc_coarse.json",
-            "SHOT_SET=--set run.end_time_s=3e-4", "VELOCITIES=689 900 1112", "THICKNESS=0.03175",
+            "SHOT_SET=--set run.end_time_s=4e-4", "VELOCITIES=689 900 1112", "THICKNESS=0.03175",
             "THICKNESSES=0.025 0.03175", "TS_VELOCITIES=689 1112", "BOOTSTRAP=200", "JOBS=2"]
     env = dict(os.environ, OMP_NUM_THREADS="1")
     done = subprocess.run(make + ["-j2", "sweep", "thickness-study"], env=env)

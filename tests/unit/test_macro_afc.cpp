@@ -112,16 +112,25 @@ TEST(AfcHydrostat, PathThroughCrushingAndLockingAndBack) {
 }
 
 TEST(AfcHydrostat, TensionIsElasticUpToTheCutoff) {
-  AfcParams p = paper_params();
-  p.options.tensile_damage = TensileDamage::Off;
-  Driver pt(AfcMaterial(p), kSpacing);
-  const double Ke = p.C6_Pa / p.C7;
-  pt.volumetric_step_to(-1e-4, 1.0);
-  EXPECT_NEAR(pressure_of(pt.state().stress), -Ke * 1e-4, 1e-9 * Ke * 1e-4);
-  pt.volumetric_step_to(-1e-3, 1.0);  // K_e mu = -22 MPa: cut off at -Tmax
-  EXPECT_DOUBLE_EQ(pressure_of(pt.state().stress), -p.Tmax_Pa);
-  pt.volumetric_step_to(-1e-4, 1.0);  // and back on the line (cracks close)
-  EXPECT_NEAR(pressure_of(pt.state().stress), -Ke * 1e-4, 1e-9 * Ke * 1e-4);
+  for (const OpenedVolume opened : {OpenedVolume::Recoverable, OpenedVolume::Permanent}) {
+    AfcParams p = paper_params();
+    p.options.tensile_damage = TensileDamage::Off;
+    p.options.opened_volume = opened;
+    Driver pt(AfcMaterial(p), kSpacing);
+    const double Ke = p.C6_Pa / p.C7;
+    pt.volumetric_step_to(-1e-4, 1.0);
+    EXPECT_NEAR(pressure_of(pt.state().stress), -Ke * 1e-4, 1e-9 * Ke * 1e-4);
+    pt.volumetric_step_to(-1e-3, 1.0);  // K_e mu = -22 MPa: cut off at -Tmax
+    EXPECT_DOUBLE_EQ(pressure_of(pt.state().stress), -p.Tmax_Pa);
+    pt.volumetric_step_to(-1e-4, 1.0);
+    if (opened == OpenedVolume::Recoverable) {  // back on the line (cracks close)
+      EXPECT_NEAR(pressure_of(pt.state().stress), -Ke * 1e-4, 1e-9 * Ke * 1e-4);
+    } else {  // the opening past the cutoff, -1e-3 + Tmax / K_e, is kept: the point is now compressed
+      const double opening = -1e-3 + p.Tmax_Pa / Ke;
+      EXPECT_NEAR(pt.state().opening_strain, opening, 1e-12);
+      EXPECT_NEAR(pressure_of(pt.state().stress), Ke * (-1e-4 - opening), 1e-6 * Ke * 1e-4);
+    }
+  }
 }
 
 TEST(AfcHydrostat, TensileCutoffFollowsTheSdelDamage) {

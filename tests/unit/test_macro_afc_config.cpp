@@ -35,7 +35,7 @@ TEST(AfcConfig, ShippedFilesGiveTable6AndTheHandoff) {
   EXPECT_EQ(p.options.tensile_degradation, TensileDegradation::Cutoff);
   EXPECT_EQ(p.options.lode, LodeDependence::Off);
   EXPECT_EQ(p.options.principal_stress_limit, PrincipalStressLimit::Off);
-  EXPECT_EQ(p.options.opened_volume, OpenedVolume::Recoverable);
+  EXPECT_EQ(p.options.opened_volume, OpenedVolume::Permanent);
   EXPECT_EQ(p.options.tensile_rate, TensileRate::Off);
   EXPECT_FALSE(p.options.sdel_zero_anchored);
   EXPECT_EQ(p.options.tensile_damage, TensileDamage::Sdel);
@@ -47,7 +47,7 @@ TEST(AfcConfig, OptionsBlockIsRead) {
   const AfcParams p = load_afc_params(
       kAfc, kSdel,
       {"options.rate_factor_floor=0", "options.cap_strength_with_c5=true", "options.damage_eps_min=0.02",
-       "options.tensile_degradation=split", "options.lode=willam_warnke", "options.opened_volume=permanent",
+       "options.tensile_degradation=split", "options.lode=willam_warnke", "options.opened_volume=recoverable",
        "options.tensile_rate=fib_model_code_2010", "options.sdel_zero_anchored=true", "options.tensile_damage=off",
        "options.wave_speed_from_unloading_modulus=true"});
   EXPECT_EQ(p.options.rate_factor_floor, 0.0);
@@ -55,7 +55,7 @@ TEST(AfcConfig, OptionsBlockIsRead) {
   EXPECT_EQ(p.options.damage_eps_min, 0.02);
   EXPECT_EQ(p.options.tensile_degradation, TensileDegradation::Split);
   EXPECT_EQ(p.options.lode, LodeDependence::WillamWarnke);
-  EXPECT_EQ(p.options.opened_volume, OpenedVolume::Permanent);
+  EXPECT_EQ(p.options.opened_volume, OpenedVolume::Recoverable);
   EXPECT_EQ(p.options.tensile_rate, TensileRate::FibModelCode2010);
   EXPECT_TRUE(p.options.sdel_zero_anchored);
   EXPECT_EQ(p.options.tensile_damage, TensileDamage::Off);

@@ -267,6 +267,49 @@ TEST(AfcSplit, TheEnergyOfTheSdelIsReleasedOnceAndNothingIsLeftStored) {
   EXPECT_EQ(law.dissipation(pt.state()).crushing, 0.0);
 }
 
+// The energy per unit crack area of a crack band one particle wide, G = h x (the work per volume of
+// uniaxial tension to full damage), at h = 1.5 ... 6.0 mm (docs/studies/2026-12-06-slow-sphere.md).
+// The SDEL steepens its softening with lambda = h / l_mac, but its peak strain e_i and so the pre-peak
+// energy depend on lambda too: G is not independent of h. Checked: with the split and AFC's tensile
+// limits lifted (so the solver gets the SDEL's own (1 - d) E e) G is the SDEL's closed-form integral
+// times h at every spacing; printed: that G and the shipped cutoff coupling's (AFC's eq. 35 on top).
+TEST(AfcSplit, EnergyPerCrackAreaOfAOneParticleBandIsTheSdelsTimesTheSpacing) {
+  for (const bool split : {true, false}) {
+    for (const double h : {0.0015, 0.00225, 0.003, 0.0045, 0.006}) {
+      AfcParams p = split ? with_split() : shipped();
+      if (split) {  // the SDEL alone
+        p.Tmax_Pa = 1e12;
+        p.C1_Pa = p.C2_Pa + 1e12;
+      }
+      const Elastic el = elastic(p);
+      const AfcMaterial law(p);
+      Driver pt(law, h);
+      const double de = 2e-7;
+      double work = 0.0, s_old = 0.0, e_old = 0.0;
+      for (int i = 0; i < 20000; ++i) {  // to e = 4e-3: d+ = 1 to round-off at every h here
+        pt.uniaxial_stress_step(de, 1e-2);
+        const double s = pt.state().stress(0, 0), e = pt.total_strain()(0, 0);
+        work += 0.5 * (s + s_old) * (e - e_old);
+        s_old = s;
+        e_old = e;
+      }
+      ASSERT_GT(pt.state().d_plus, 0.99999);
+      if (split) {
+        double sdel = 0.0;
+        const int n = 200000;
+        const double step = 4e-3 / n;
+        for (int i = 0; i < n; ++i) {
+          const double e = (i + 0.5) * step;
+          sdel += (1 - law.sdel_damage(e, h)) * el.E * e * step;
+        }
+        EXPECT_NEAR(work, sdel, 2e-4 * sdel) << h;  // (the hydrostat's finite volumetric strain)
+      }
+      std::printf("%s, h %.2f mm: %.1f J/m^3, G = %.3f J/m^2\n", split ? "the SDEL alone" : "the cutoff coupling",
+                  1e3 * h, work, work * h);
+    }
+  }
+}
+
 TEST(AfcSplit, StoredEnergyIsEq21sFreeEnergy) {
   // Psi = (1 - d+) Psi0+ + Psi0-, Psi0+- = 1/2 sigma_e+- : eps_e (Wu-Li-Faria), for a state with both signs.
   const AfcParams p = with_split();

@@ -96,7 +96,7 @@ TEST(AfcCheckValues, TheOptionsLeaveWhatTheyAreMeantToLeave) {
       {"lode", [](AfcOptions& o) { o.lode = LodeDependence::WillamWarnke; }},
       {"principal limit (f't)", [](AfcOptions& o) { o.principal_stress_limit = PrincipalStressLimit::UniaxialTensileStrength; }},
       {"principal limit (Tmax)", [](AfcOptions& o) { o.principal_stress_limit = PrincipalStressLimit::Tmax; }},
-      {"permanent opening", [](AfcOptions& o) { o.opened_volume = OpenedVolume::Permanent; }},
+      {"recoverable opening", [](AfcOptions& o) { o.opened_volume = OpenedVolume::Recoverable; }},
   };
   for (const OptionCase& c : cases) {
     AfcParams p = paper_params();
