@@ -3,7 +3,6 @@
 #include <filesystem>
 #include <utility>
 
-#include "materials/afc.hpp"
 #include "materials/afc_config.hpp"
 
 namespace uhpc::macro {
@@ -46,14 +45,7 @@ AfcParams read_afc(const Config& block, const std::optional<SdelHandoff>& sdel, 
   const Config cfg = Config::load(constants);
   AfcParams p = afc_params_from_config(cfg, handoff);
   cfg.finish();
-  if (block.has("options")) {
-    p.options = afc_options_from_config(block.section("options"), p.options);
-    try {
-      (void)AfcMaterial(p);
-    } catch (const std::invalid_argument& e) {
-      block.fail("options", e.what());
-    }
-  }
+  if (block.has("options")) p.options = afc_options_from_config(block.section("options"), p.options);
   record.files_read.push_back(constants);
   if (!sdel) {
     record.files_read.push_back(sdel_file);

@@ -122,7 +122,9 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   // The strain the hydrostat reads: mu itself, less the permanent opening with OpenedVolume::Permanent.
   double mu_h = mu - st.opening_strain;
   const double F = afc_rate_factor(effective_deviatoric_rate(de, step.dt_s), p_);
-  const double dif = o.tensile_rate == TensileRate::Off ? 1.0 : afc_tensile_dif(largest_principal_rate(de, step.dt_s), p_);
+  const bool rate = o.tensile_rate != TensileRate::Off;
+  // The tensile DIF of this step's largest principal strain rate (used when the tensile strain grows).
+  const double dif_now = rate ? afc_tensile_dif(largest_principal_rate(de, step.dt_s), p_) : 1.0;
 
   // 1. Hydrostat history.
   const double mu_max_old = st.mu_max;
@@ -130,7 +132,7 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   double P_uncut = hydro_.uncut_pressure(mu_h, st.mu_max);
   const double mu_p = hydro_.crushing_strain(st.mu_max);
   const double dmu_p = mu_p - st.crushing_strain;
-  st.crushing_work += hydro_.crushing_dissipation(mu_max_old, st.mu_max);
+  st.crushing_work += hydro_.crushing_dissipation(mu_max_old, st.mu_max, st.opening_strain);
 
   // 2. Tensile damage (never decreasing: kappa and d+ are history maxima).
   if (o.tensile_damage == TensileDamage::Sdel) {
@@ -153,9 +155,21 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
       st.strain += de;
       e = equivalent_tensile_strain(st.strain);
     }
-    st.tensile_strain_max = std::max(st.tensile_strain_max, e / dif);
+    if (!rate) {
+      st.tensile_strain_max = std::max(st.tensile_strain_max, e);
+    } else if (e > st.tensile_strain_reached) {
+      // With the tensile DIF, kappa grows by each new increment of the strain history over the DIF of
+      // the step that made it, and the DIF is held while the strain does not grow: a step with no
+      // stretch (rate 0, DIF 1) neither jumps kappa to e nor drops the cutoff.
+      st.tensile_dif = dif_now;
+      st.tensile_strain_max += (e - st.tensile_strain_reached) / dif_now;
+      st.tensile_strain_reached = e;
+    }
     st.d_plus = std::max(st.d_plus, sdel_damage(st.tensile_strain_max, step.spacing_m));
+  } else if (rate) {
+    st.tensile_dif = dif_now;  // no damage to hold it for: the cutoff follows the rate
   }
+  const double dif = st.tensile_dif;  // 1 without the option
 
   // 3. Effective stress: pressure with the cutoff, deviator returned at fixed pressure onto S. With the
   // split, d+ acts on the stress handed to the solver (5.), not on these limits.
@@ -196,7 +210,7 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
     st.plastic_strain += dep;
     st.plastic_work += S * dep / step.density_ratio;  // s : d eps_p = S d eps_p per current volume
   }
-  if (o.principal_stress_limit != PrincipalStressLimit::Off) limit_principal_stress(st, s, P, step.density_ratio);
+  if (o.principal_stress_limit != PrincipalStressLimit::Off) limit_principal_stress(st, s, P, dif, step.density_ratio);
 
   // 4. Compressive damage (eq. 36), only under compression; d- enters the next step's strength. The
   // principal-stress limit is a tensile mechanism (its damage is d+) and does not add to d-.
@@ -212,10 +226,10 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   st.stress = split ? scale_tensile_part(st.effective_stress, 1.0 - st.d_plus) : st.effective_stress;
 }
 
-void AfcMaterial::limit_principal_stress(State& st, Mat3& s, double P, double density_ratio) const {
-  // sigma_1 = s_1 - P <= T_R (1 - d+). |s_1| <= 2 q / 3, so below that nothing is computed.
-  const double limit = principal_limit_ * (1.0 - st.d_plus);
-  const double c = std::max(limit + P, 0.0);  // >= 0 under the cutoff coupling (P >= -Tmax (1 - d+))
+void AfcMaterial::limit_principal_stress(State& st, Mat3& s, double P, double dif, double density_ratio) const {
+  // sigma_1 = s_1 - P <= DIF T_R (1 - d+). |s_1| <= 2 q / 3, so below that nothing is computed.
+  const double limit = dif * principal_limit_ * (1.0 - st.d_plus);
+  const double c = std::max(limit + P, 0.0);  // >= 0 under the cutoff coupling (P >= -DIF Tmax (1 - d+))
   const double norm2 = s.cwiseProduct(s).sum();
   if (std::sqrt(2.0 / 3.0 * norm2) <= c) return;
   const Mat3 s_new = limit_principal_deviator(s, c);
@@ -241,8 +255,8 @@ void AfcMaterial::rotate(State& st, const Mat3& R) const {
 bool AfcMaterial::stress_free(const State& st, double density_ratio) const {
   if (!(st.d_plus >= 1.0)) return false;
   if (p_.options.opened_volume == OpenedVolume::Permanent) {
-    // Open while the hydrostat reads no compression (at the cut after opening, or below it).
-    if (hydro_.uncut_pressure(density_ratio - 1.0 - st.opening_strain, st.mu_max) > 0.0) return false;
+    // Open while the last update held it at the (zero) cutoff: its hydrostat read no compression.
+    if (!st.at_tensile_cutoff) return false;
   } else if (!(density_ratio < 1.0)) {
     return false;
   }
@@ -263,8 +277,11 @@ double AfcMaterial::wave_speed(const State& state, double density_ratio) const {
   // rho0; its speed is that of the closed material. At the current density it would grow as
   // sqrt(V / V0) with a shear modulus that no longer acts, and expanding ejecta (V up to 1e3 V0) would
   // collapse the stable step.
-  if (stress_free(state, density_ratio)) density_ratio = 1.0 + state.opening_strain;
-  const double mu = density_ratio - 1.0 - state.opening_strain;  // the strain the hydrostat reads
+  double mu = density_ratio - 1.0 - state.opening_strain;  // the strain the hydrostat reads
+  if (stress_free(state, density_ratio)) {
+    density_ratio = 1.0;
+    mu = 0.0;
+  }
   double slope = hydro_.slope(mu, state.mu_max);
   if (p_.options.wave_speed_from_unloading_modulus)
     slope = std::max(slope, hydro_.unloading_modulus(state.mu_max));

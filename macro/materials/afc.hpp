@@ -5,8 +5,8 @@
 //      OpenedVolume::Permanent), mu_max = max(mu_max, mu_h), the uncut pressure P_u (afc_hydrostat.hpp,
 //      the curve or the unloading line without the tensile cutoff), the crushing strain mu_p and its
 //      dissipation;
-//   2. tensile damage: e = equivalent tensile strain by the handoff's measure, kappa = max(kappa, e / DIF)
-//      (DIF = 1 unless AfcOptions::tensile_rate),
+//   2. tensile damage: e = equivalent tensile strain by the handoff's measure, kappa = max(kappa, e)
+//      (with AfcOptions::tensile_rate: kappa += (new growth of e) / DIF of that step, DIF held between),
 //      d+ = max(d+, SDEL(lambda, kappa)), lambda = h_I / l_mac (h_I = MaterialStep::spacing_m). The
 //      default measure (EffectiveTensile) reads the driver stress sigma_bar: the same material with no
 //      tensile limit (P from the whole rho/rho0 - 1, the deviator returned only on the compressive
@@ -51,6 +51,9 @@ class AfcMaterial {
     double d_minus = 0.0;          // compressive damage (eq. 36)
     double d_plus = 0.0;           // tensile damage (SDEL, eq. 37)
     double tensile_strain_max = 0.0;  // kappa: history maximum of the equivalent tensile strain (over DIF)
+    // AfcOptions::tensile_rate: the history maximum of e itself and the DIF held since it last grew.
+    double tensile_strain_reached = 0.0;
+    double tensile_dif = 1.0;
     double plastic_strain = 0.0;   // equivalent (deviatoric) plastic strain
     double plastic_work = 0.0;     // J per unit reference volume: deviatoric plastic work
     // OpenedVolume::Permanent: the volumetric strain opened past the tensile cutoff (<= 0, kept) and the
@@ -74,8 +77,8 @@ class AfcMaterial {
   double wave_speed(const State& state, double density_ratio) const;
   // A fully failed point (d+ = 1) that is open and hands the solver no stress (with the split: no
   // compressive principal stress left either): it resists nothing until it closes. Open: expanded past
-  // its reference density (OpenedVolume::Recoverable), or with the permanent opening the hydrostat
-  // reading no compression at rho/rho0 - 1 - opening_strain.
+  // its reference density (OpenedVolume::Recoverable), or with the permanent opening held at the zero
+  // cutoff by its last update (the hydrostat read no compression).
   bool stress_free(const State& state, double density_ratio) const;
   double reference_density() const { return p_.density_kg_m3; }
   // For NSNI: the current tangent (1 + mu) dP/dmu of the hydrostat (the crushing slope while loading on
@@ -109,7 +112,7 @@ class AfcMaterial {
 
  private:
   // The principal-stress limit's return of the deviator s at pressure P (AfcOptions::principal_stress_limit).
-  void limit_principal_stress(State& state, Mat3& s, double P, double density_ratio) const;
+  void limit_principal_stress(State& state, Mat3& s, double P, double dif, double density_ratio) const;
 
   AfcParams p_;
   AfcHydrostat hydro_;

@@ -45,9 +45,14 @@ AfcOptions afc_options_from_config(const uhpc::Config& c, AfcOptions o) {
     o.tensile_damage = c.choice("tensile_damage", {"sdel", "off"}) == "off" ? TensileDamage::Off : TensileDamage::Sdel;
   if (c.has("wave_speed_from_unloading_modulus"))
     o.wave_speed_from_unloading_modulus = c.flag("wave_speed_from_unloading_modulus");
-  if (o.principal_stress_limit != PrincipalStressLimit::Off && o.tensile_degradation != TensileDegradation::Cutoff)
-    c.fail("principal_stress_limit",
-           "needs tensile_degradation 'cutoff' (with the split the tension is already degraded by 1 - d+)");
+  // The conflict is named by the key of this block that made it (a case's options may meet a constants
+  // file's): the limit when it is set here, else the coupling.
+  if (o.principal_stress_limit != PrincipalStressLimit::Off && o.tensile_degradation != TensileDegradation::Cutoff) {
+    if (c.has("principal_stress_limit") || !c.has("tensile_degradation"))
+      c.fail("principal_stress_limit",
+             "needs tensile_degradation 'cutoff' (with the split the tension is already degraded by 1 - d+)");
+    c.fail("tensile_degradation", "'split' cannot go with the principal_stress_limit set in the constants file's options");
+  }
   return o;
 }
 

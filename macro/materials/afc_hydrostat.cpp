@@ -52,17 +52,17 @@ double AfcHydrostat::slope(double mu, double mu_max) const {
   return mu >= mu_max ? loading_slope(mu) : unloading_modulus(mu_max);
 }
 
-double AfcHydrostat::recoverable_work(double m) const {
-  // Line P = K_u (1 + mu) + c with c = P_L(m) - K_u (1 + m); antiderivative of P / (1 + mu)^2 is
-  // K_u ln(1 + mu) - c / (1 + mu).
+double AfcHydrostat::recoverable_work(double m, double o) const {
+  // Line P = K_u (1 + mu) + c with c = P_L(m) - K_u (1 + m); with u = 1 + mu + o, P = K_u u + c - K_u o
+  // and the antiderivative of P / u^2 is K_u ln(u) - (c - K_u o) / u.
   const double K = unloading_modulus(m), c = loading_pressure(m) - K * (1.0 + m);
-  const auto W = [&](double mu) { return K * std::log1p(mu) - c / (1.0 + mu); };
+  const auto W = [&](double mu) { return K * std::log1p(mu + o) - (c - K * o) / (1.0 + mu + o); };
   return W(m) - W(crushing_strain(m));
 }
 
-double AfcHydrostat::loading_work(double a, double b) const {
+double AfcHydrostat::loading_work(double a, double b, double o) const {
   // Composite Simpson on each smooth piece (the curve has kinks at C7 and C9).
-  const auto f = [&](double mu) { return loading_pressure(mu) / ((1.0 + mu) * (1.0 + mu)); };
+  const auto f = [&](double mu) { return loading_pressure(mu) / ((1.0 + mu + o) * (1.0 + mu + o)); };
   const auto simpson = [&](double lo, double hi) {
     if (!(hi > lo)) return 0.0;
     constexpr int n = 16;  // even
@@ -75,11 +75,11 @@ double AfcHydrostat::loading_work(double a, double b) const {
   return simpson(a, k1) + simpson(k1, k2) + simpson(k2, b);
 }
 
-double AfcHydrostat::crushing_dissipation(double m0, double m1) const {
+double AfcHydrostat::crushing_dissipation(double m0, double m1, double o) const {
   if (!(m1 > m0) || m1 <= C7_) return 0.0;
   const double a = std::max(m0, C7_);
   // Below C7 loading and recoverable work coincide (elastic); only the part above C7 dissipates.
-  return loading_work(a, m1) - (recoverable_work(m1) - recoverable_work(a));
+  return loading_work(a, m1, o) - (recoverable_work(m1, o) - recoverable_work(a, o));
 }
 
 }  // namespace uhpc::macro

@@ -46,13 +46,14 @@ class AfcHydrostat {
 
   // Energy per unit reference volume dissipated by crushing when mu_max grows from m0 to m1: the work
   // along the loading curve minus the growth of the work recoverable along the unloading line (down to
-  // zero pressure), both as the integral of P dmu / (1 + mu)^2 = -P dV / V0, the work per reference
-  // volume of the pressure on the volume change. Zero while m1 <= C7.
-  double crushing_dissipation(double m0, double m1) const;
+  // zero pressure), both as the integral of P dmu / (1 + mu + o)^2 = -P dV / V0, the work per reference
+  // volume of the pressure on the volume change; o the permanent opening (the hydrostat reads
+  // mu = rho/rho0 - 1 - o, AfcOptions::opened_volume). Zero while m1 <= C7.
+  double crushing_dissipation(double m0, double m1, double opening = 0.0) const;
 
  private:
-  double recoverable_work(double mu_max) const;  // integral of the unloading line from mu_p to mu_max
-  double loading_work(double a, double b) const;  // integral of P_L dmu / (1 + mu)^2 over [a, b]
+  double recoverable_work(double mu_max, double o) const;   // the unloading line from mu_p to mu_max
+  double loading_work(double a, double b, double o) const;  // integral of P_L dmu / (1 + mu + o)^2 over [a, b]
 
   double C6_, C7_, C8_, C9_, K1_, K2_, K3_;
   double K_e_, P9_;

@@ -61,8 +61,10 @@ enum class TensileRate {
   // The tensile DIF of the fib Model Code 2010 (section 5.1.11.2, eqs. 5.1-106 and 5.1-107):
   //   DIF = (edot / edot0)^0.018 for edot <= 10 1/s, 0.0062 (edot / edot0)^(1/3) above, edot0 = 1e-6 1/s,
   // floored at 1; edot the step's largest principal strain rate (0 when nothing stretches). It raises
-  // the tensile cutoff to DIF Tmax (1 - d+) (and T in eq. 35) and delays d+: the SDEL is evaluated at
-  // the history maximum of e / DIF, so the peak of (1 - d+) E e rises by DIF.
+  // the tensile cutoff to DIF Tmax (1 - d+) (and T in eq. 35) and delays d+: kappa grows by each new
+  // increment of the tensile strain's history maximum over the DIF of the step that made it, and the
+  // DIF is held while that maximum does not grow (a step with no stretch neither jumps kappa to e nor
+  // drops the cutoff). At a constant rate kappa = e / DIF: the damage curve stretched by DIF.
   FibModelCode2010,
 };
 

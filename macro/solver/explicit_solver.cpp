@@ -83,6 +83,8 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
   if (states != p_.n) throw std::invalid_argument("ExplicitSolver: one material state per particle is required");
   if (!(options_.cfl > 0 && options_.cfl <= 1)) throw std::invalid_argument("ExplicitSolver: cfl must be in (0, 1]");
   if (!(options_.support_factor > 1)) throw std::invalid_argument("ExplicitSolver: support_factor must be > 1");
+  if (!(options_.nsni_coefficient > 0) || !std::isfinite(options_.nsni_coefficient))
+    throw std::invalid_argument("ExplicitSolver: nsni_coefficient must be finite and > 0");
   if (options_.viscosity.c_linear < 0 || options_.viscosity.c_quadratic < 0)
     throw std::invalid_argument("ExplicitSolver: bulk viscosity coefficients must be >= 0");
   if (!(options_.dt_collapse_fraction >= 0 && options_.dt_collapse_fraction < 1))

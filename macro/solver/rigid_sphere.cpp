@@ -11,6 +11,10 @@
 
 namespace uhpc::macro {
 
+double contact_reach(const SphereContactOptions& c, double spacing) {
+  return (c.contact_radius_factor > 0.0 ? c.contact_radius_factor : 0.25) * spacing;
+}
+
 void RigidSphere::validate() const {
   if (!(mass_kg > 0) || !(radius_m > 0) || !std::isfinite(mass_kg) || !std::isfinite(radius_m))
     throw std::invalid_argument("RigidSphere: mass and radius must be finite and > 0");
@@ -31,17 +35,16 @@ void SphereContact::initialize(const RigidSphere& sphere, const Particles& p) {
     // rho0 c0^2 with rho0 = m / V0: the reference stiffness, whatever the current state.
     const double rho0 = p.mass[i] / p.volume0[i];
     k_[i] = sphere.contact.penalty_scale * rho0 * p.wave_speed[i] * p.wave_speed[i] * p.spacing[i];
-    // The travel limit's distance: the contact radius, not below h_I / 4 (a zero radius, the particles'
-    // centres on the sphere's surface, would stop the clock).
-    min_travel_distance_ =
-        std::min(min_travel_distance_, std::max(sphere.contact.contact_radius_factor, 0.25) * p.spacing[i]);
+    // The travel limit's distance: the contact radius; h_I / 4 for a zero radius (the particles' centres
+    // on the sphere's surface), which would stop the clock.
+    min_travel_distance_ = std::min(min_travel_distance_, contact_reach(sphere.contact, p.spacing[i]));
   }
   flagged_.assign(p.n, 0);
   // Room for the particles a shell of one contact diameter around the sphere can hold, several times
   // over (debris piles up), so the candidate lists do not grow during a run.
   double r_max = 0.0, h_min = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.n; ++i) {
-    r_max = std::max(r_max, sphere.contact.contact_radius_factor * p.spacing[i]);
+    r_max = std::max(r_max, contact_reach(sphere.contact, p.spacing[i]));
     h_min = std::min(h_min, p.spacing[i]);
   }
   const double outer = sphere.radius_m + 2.0 * r_max;
@@ -139,14 +142,13 @@ SphereContactSums SphereContact::kinematic(const RigidSphere& s, const Particles
   for (std::int64_t i = 0; i < n; ++i) {
     double* f = f_contact + 3 * i;
     f[0] = f[1] = f[2] = 0.0;
-    const double r_i = reach_factor * p.spacing[i];
     double d2 = 0.0;
     for (int c = 0; c < 3; ++c) {
       const double a = (p.f_int[3 * i + c] + p.f_ext[3 * i + c]) / p.mass[i];
       const double x = p.x[3 * i + c] + dt_next * p.v[3 * i + c] + dt2 * a;
       d2 += (x - xs[c]) * (x - xs[c]);
     }
-    const double limit = s.radius_m + 2.0 * r_i;
+    const double limit = s.radius_m + 2.0 * contact_reach(s.contact, p.spacing[i]);  // candidates' margin
     flagged_[i] = d2 < limit * limit;
   }
   candidates_.clear();

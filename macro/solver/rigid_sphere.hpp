@@ -42,7 +42,7 @@
 // one step. Its work, f_t . w dt <= 0, is dissipated and lands in the contact energy of the ledger. The
 // torque on the sphere is not applied: zero by symmetry for a normal impact on the axis.
 // Both models also limit the step so that the sphere cannot pass through a particle's contact radius
-// between two steps: the time it takes to travel the smallest contact radius, min max(r_I, h_I / 4) / |v_s|.
+// between two steps: the time it takes to travel the smallest contact radius, min r_I / |v_s| (h_I / 4 for r_I = 0).
 // The contact distance R + r_I sweeps, per unit of the sphere's travel, the particles whose centres lie
 // within R + r_I of its line: a mass rho0 pi (R + r_I)^2, which converges to the sphere's own
 // rho0 pi R^2 as h -> 0 for any factor, and equals it at every spacing for factor 0 (the particles'
@@ -63,6 +63,10 @@ struct SphereContactOptions {
   double contact_radius_factor = 0.5;  // r_I = contact_radius_factor * h_I (>= 0; > 0 for the penalty)
   double friction_coefficient = 0.0;   // Coulomb mu (0: frictionless)
 };
+
+// The distance that sets the travel limit and the candidates' margin for a particle of spacing h: its
+// contact radius factor x h, or h / 4 when that is 0.
+double contact_reach(const SphereContactOptions& contact, double spacing);
 
 struct RigidSphere {
   double mass_kg = 0.0;

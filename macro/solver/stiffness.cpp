@@ -1,5 +1,7 @@
 #include "solver/stiffness.hpp"
 
+#include "solver/nsni_moment.hpp"
+
 #include <cstdint>
 #include <vector>
 
@@ -44,7 +46,7 @@ Eigen::MatrixXd nodal_integration_stiffness(const ShapeCache& shapes, const doub
     });
     Eigen::MatrixXd KL = volume[L] * B.transpose() * C * B;
     if (nsni) {
-      const double moment = std::cbrt(volume[L] * volume[L] * volume[L] * volume[L] * volume[L]) / 12.0;
+      const double moment = nsni_moment(volume[L], 1.0);
       for (int d = 0; d < 3; ++d) {
         const Eigen::MatrixXd Bd = strain_operator(shapes.hess.data() + 6 * b, count, [d](const double* base, std::int64_t k, double* g) {
           for (int c = 0; c < 3; ++c) g[c] = base[6 * k + sym_index(d, c)];

@@ -4,7 +4,7 @@
 // elastic C,
 //   K = sum_L V_L B_L^T C B_L,   u^T K u = sum_L V_L eps_L : C : eps_L.
 // With `nsni` (shapes built with second gradients) the NSNI term is added:
-//   K += sum_L M_L sum_d B_d,L^T C B_d,L,   M_L = V_L^(5/3) / 12,
+//   K += sum_L M_L sum_d B_d,L^T C B_d,L,   M_L = V_L^(5/3) / 12 (nsni_moment.hpp with c = 1),
 // B_d the strain-gradient operator eps_,d = sum_J sym(u_J (x) Psi^(d.)_J).
 // `integration_points` (n flags, optional) restricts the sum to the flagged L: the energy of a mode in
 // part of the body.

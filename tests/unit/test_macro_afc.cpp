@@ -195,7 +195,9 @@ TEST(AfcHydrostat, WaveSpeedUsesTheCurrentTangent) {
 }
 
 TEST(AfcHydrostat, AnOpenFullyFailedPointHasTheWaveSpeedOfTheClosedMaterial) {
-  const AfcParams p = paper_params();
+  // The hydrostat of rho / rho0 (the permanent opening's case is in test_macro_afc_failed.cpp).
+  AfcParams p = paper_params();
+  p.options.opened_volume = OpenedVolume::Recoverable;
   const AfcMaterial law(p);
   const double c0 = std::sqrt((p.C6_Pa / p.C7 + 4.0 / 3.0 * p.shear_modulus_Pa) / p.density_kg_m3);
   AfcMaterial::State s;

@@ -188,6 +188,7 @@ TEST(AfcPrincipalLimit, TheReturnIsTheClosestAdmissibleDeviator) {
     const Mat3 r = limit_principal_deviator(s, c);
     ASSERT_LE(largest_principal(r), c + 1e-14 * s.norm()) << largest_principal(r) - c;  // to round-off
     ASSERT_NEAR(r.trace(), 0.0, 1e-12);
+    ASSERT_GE(r.cwiseProduct(s - r).sum(), -1e-14 * s.squaredNorm());  // its work s_new : (s - s_new) >= 0
     for (int t = 0; t < 50; ++t) {
       Mat3 dz;
       for (int a = 0; a < 3; ++a)

@@ -70,10 +70,10 @@ TEST(AfcCheckValues, UniaxialTensionWithoutTensileDamage) {
 }
 
 // The options of docs/physics.md section 4 against the same check values. Each is meant to leave the
-// hydrostat (P(C9), c) and the compressive meridian (f'c: uniaxial compression lies on it) alone; the
+// hydrostat (P(C9)) and the compressive meridian (f'c: uniaxial compression lies on it) alone; the
 // Lode factor moves uniaxial tension onto the extension meridian (r = psi(0) there, so
 // f't = psi a / (1 + psi a / (3 Tmax)), a = C1 - C2: 13.8 MPa), the Tmax form of the principal limit caps
-// it at Tmax, and the other options leave it.
+// it at Tmax, the tensile DIF raises Tmax by DIF(1e-4 1/s) = 1.09, and the other options leave it.
 struct OptionCase {
   const char* name;
   void (*set)(AfcOptions&);
@@ -97,6 +97,7 @@ TEST(AfcCheckValues, TheOptionsLeaveWhatTheyAreMeantToLeave) {
       {"principal limit (f't)", [](AfcOptions& o) { o.principal_stress_limit = PrincipalStressLimit::UniaxialTensileStrength; }},
       {"principal limit (Tmax)", [](AfcOptions& o) { o.principal_stress_limit = PrincipalStressLimit::Tmax; }},
       {"recoverable opening", [](AfcOptions& o) { o.opened_volume = OpenedVolume::Recoverable; }},
+      {"tensile DIF", [](AfcOptions& o) { o.tensile_rate = TensileRate::FibModelCode2010; }},
   };
   for (const OptionCase& c : cases) {
     AfcParams p = paper_params();
@@ -107,10 +108,15 @@ TEST(AfcCheckValues, TheOptionsLeaveWhatTheyAreMeantToLeave) {
     for (int i = 1; i <= 100; ++i) pt.volumetric_step_to(p.C9 * i / 100.0, 1.0);
     std::printf("[%s]\n", c.name);
     expect_printed(pressure_of(pt.state().stress) / MPa, 807.7, 1, "P(C9) [MPa]");
-    expect_printed(law.wave_speed(AfcMaterial::State{}, 1.0), 4274.0, 0, "wave speed at rest [m/s]");
     expect_printed(uniaxial_peak(p, -1e-6) / MPa, 193.6, 1, "unconfined compressive strength [MPa]");
     const double ft = uniaxial_peak(p, 1e-7);
-    if (p.options.lode == LodeDependence::WillamWarnke) {
+    if (p.options.tensile_rate != TensileRate::Off) {
+      // At the reference rate 1e-4 1/s of the check: DIF = 100^0.018 on Tmax.
+      const double dif = afc_tensile_dif(p.reference_strain_rate_1_s, p), a = p.C1_Pa - p.C2_Pa;
+      const double expected = a / (1.0 + a / (3.0 * dif * p.Tmax_Pa));
+      std::printf("uniaxial tensile strength [MPa]: %.4f (DIF %.4f: %.4f)\n", ft / MPa, dif, expected / MPa);
+      EXPECT_NEAR(ft, expected, 1e-4 * expected);
+    } else if (p.options.lode == LodeDependence::WillamWarnke) {
       const double psi = lode_psi(0.0, 0.0, 1.0, p), a = p.C1_Pa - p.C2_Pa;
       const double expected = psi * a / (1.0 + psi * a / (3.0 * p.Tmax_Pa));
       std::printf("uniaxial tensile strength [MPa]: %.4f (psi(0) = %.4f: %.4f)\n", ft / MPa, psi, expected / MPa);

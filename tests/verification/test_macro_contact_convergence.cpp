@@ -75,8 +75,8 @@ TEST(MacroContactConvergence, TheImpulseOnAStrengthlessTargetUnderRefinement) {
   // contact distance (0.85 / 0.45 / 0.32 N s with h / 2), because at 3 mm the 9 mm block is three layers
   // pushed as a plug and the flow around the sphere is not resolved (R / h = 2.1); the contact distance
   // moves it by a fifth at every spacing, so it is not what makes the resistance depend on the spacing.
-  // Checked: each factor's impulse falls monotonically and converges (observed order >= 1), a shorter
-  // contact distance resists less at every spacing, and the two distances draw together.
+  // Checked: each factor's impulse falls monotonically with an observed order >= 1, and the centres-on-
+  // surface contact (factor 0) resists 10-40 % less than h / 2 at every spacing (measured 20-21 %).
   const double h[3] = {0.003, 0.00225, 0.0015};
   double I_half[3] = {}, I_zero[3] = {};
   for (const double factor : {0.5, 0.0}) {
@@ -90,8 +90,12 @@ TEST(MacroContactConvergence, TheImpulseOnAStrengthlessTargetUnderRefinement) {
     EXPECT_GT(I[1], I[2]);
     EXPECT_GE(p, 1.0);
   }
-  for (int k = 0; k < 3; ++k) EXPECT_LT(I_zero[k], I_half[k]) << "spacing " << h[k];
-  EXPECT_LT(I_half[2] - I_zero[2], I_half[0] - I_zero[0]);
+  for (int k = 0; k < 3; ++k) {
+    const double less = 1.0 - I_zero[k] / I_half[k];
+    std::printf("spacing %.2f mm: factor 0 resists %.1f %% less than h / 2\n", 1e3 * h[k], 100.0 * less);
+    EXPECT_GT(less, 0.10) << "spacing " << h[k];
+    EXPECT_LT(less, 0.40) << "spacing " << h[k];
+  }
 }
 
 }  // namespace
