@@ -12,25 +12,12 @@
 #include "materials/afc.hpp"
 #include "materials/afc_config.hpp"
 #include "materials/point_driver.hpp"
+#include "afc_point_tests.hpp"
 
 namespace uhpc::macro {
 namespace {
 
-constexpr double kSpacing = 0.003;
-constexpr double MPa = 1e6;
-using Driver = PointDriver<AfcMaterial>;
-
-AfcParams shipped() { return load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json"); }
-
-// The volumetric strain of the loading curve at pressure P (bisection on the rising curve).
-double mu_at_pressure(const AfcHydrostat& h, double P) {
-  double lo = 0.0, hi = 0.5;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (h.loading_pressure(mid) < P ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
+using namespace afc_test;
 
 // A point with d+ = d- = 1 (both history variables can only stay there).
 Driver failed_point(const AfcMaterial& law) {

@@ -13,16 +13,13 @@
 #include "materials/afc_config.hpp"
 #include "materials/afc_strength.hpp"
 #include "materials/point_driver.hpp"
+#include "afc_point_tests.hpp"
 #include "materials/principal_stress_limit.hpp"
 
 namespace uhpc::macro {
 namespace {
 
-constexpr double kSpacing = 0.003;
-constexpr double MPa = 1e6;
-using Driver = PointDriver<AfcMaterial>;
-
-AfcParams shipped() { return load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json"); }
+using namespace afc_test;
 
 AfcParams with_lode() {
   AfcParams p = shipped();
@@ -34,15 +31,6 @@ AfcParams with_limit(PrincipalStressLimit limit) {
   AfcParams p = shipped();
   p.options.principal_stress_limit = limit;
   return p;
-}
-
-double mu_at_pressure(const AfcHydrostat& h, double P) {
-  double lo = 0.0, hi = 0.5;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (h.loading_pressure(mid) < P ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
 }
 
 // (The iterative solver: the closed form loses sqrt(eps) on the repeated principal values of the corner.)

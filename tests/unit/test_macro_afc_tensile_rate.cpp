@@ -11,16 +11,15 @@
 #include "materials/afc_config.hpp"
 #include "materials/afc_strength.hpp"
 #include "materials/point_driver.hpp"
+#include "afc_point_tests.hpp"
 
 namespace uhpc::macro {
 namespace {
 
-constexpr double kSpacing = 0.003;
-constexpr double MPa = 1e6;
-using Driver = PointDriver<AfcMaterial>;
+using namespace afc_test;
 
 AfcParams with_rate(bool damage = true) {
-  AfcParams p = load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json");
+  AfcParams p = shipped();
   p.options.tensile_rate = TensileRate::FibModelCode2010;
   if (!damage) p.options.tensile_damage = TensileDamage::Off;
   return p;

@@ -11,15 +11,12 @@
 #include "materials/afc.hpp"
 #include "materials/afc_config.hpp"
 #include "materials/point_driver.hpp"
+#include "afc_point_tests.hpp"
 
 namespace uhpc::macro {
 namespace {
 
-constexpr double kSpacing = 0.003;
-constexpr double MPa = 1e6;
-using Driver = PointDriver<AfcMaterial>;
-
-AfcParams shipped() { return load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json"); }
+using namespace afc_test;
 
 // Eq. 21's split applied to the macro stress (the option TensileDegradation::Split).
 AfcParams with_split() {
