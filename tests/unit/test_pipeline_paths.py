@@ -1,0 +1,61 @@
+#!/usr/bin/env python3
+"""Every run target of pipelines/Makefile takes SHOT_CASE, SDEL and OUT as the user typed them.
+
+usage: test_pipeline_paths.py SOURCE_DIR
+
+From a scratch directory holding its own case file, `make -n -C SOURCE_DIR/pipelines <target>` (a dry run:
+nothing is built or run) with SHOT_CASE=mycase.json (in the scratch directory), SDEL=data/sdel_paper.json
+(not there: read from the repository root) and OUT=rel_out. Every uhpc-macro and ballistic_limit.py
+command a target would run must name the case and SDEL by absolute paths that exist, and write under
+<scratch>/rel_out. A shell sets PWD to the directory it is in; the test sets it the same way.
+"""
+import os
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+TARGETS = ["shots", "shots-measured", "spacing-study", "refinement-study", "rim-study", "ballistic-limit",
+           "sweep", "thickness-study"]
+
+
+def main():
+    src = pathlib.Path(sys.argv[1]).resolve()
+    failures = []
+    with tempfile.TemporaryDirectory() as tmp:
+        scratch = pathlib.Path(tmp)
+        shutil.copy(src / "data" / "macro_disc_afc_coarse.json", scratch / "mycase.json")
+        env = dict(os.environ, PWD=str(scratch))
+        for target in TARGETS:
+            cmd = ["make", "-n", "-C", str(src / "pipelines"), "--no-print-directory", "-o", "macro-tools",
+                   target, "SHOT_CASE=mycase.json", "SDEL=data/sdel_paper.json", "OUT=rel_out",
+                   "VELOCITIES=700", "TS_VELOCITIES=700", "THICKNESSES=0.03"]
+            done = subprocess.run(cmd, cwd=scratch, env=env, capture_output=True, text=True)
+            commands = done.stdout.replace("\\\n", " ").splitlines()  # continued lines joined
+            runs = [l for l in commands if "uhpc-macro --config" in l or "ballistic_limit.py" in l]
+            problems = []
+            if done.returncode != 0:
+                problems.append(f"exit {done.returncode}: {done.stderr.strip()[-300:]}")
+            if not runs:
+                problems.append("no run in the dry run")
+            for line in runs:
+                config = re.search(r"--config (\S+)", line)
+                sdel = re.search(r"--sdel (\S+)", line)
+                out = re.search(r"--out (\S+)", line)
+                if not config or config.group(1) != str(scratch / "mycase.json"):
+                    problems.append(f"case not the scratch directory's: {line[:300]}")
+                if not sdel or sdel.group(1) != str(src / "data" / "sdel_paper.json"):
+                    problems.append(f"SDEL not the root's: {line[:300]}")
+                if not out or not out.group(1).startswith(str(scratch / "rel_out") + "/"):
+                    problems.append(f"output not under <scratch>/rel_out: {line[:300]}")
+            print(("ok   " if not problems else "FAIL ") + f"{target}: {len(runs)} run(s)")
+            for p in problems[:3]:
+                print("     " + p)
+            failures += problems
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
