@@ -5,15 +5,22 @@ that does not perforate and the lowest that does, bracketed to a stated width.
 usage: ballistic_limit.py --macro UHPC_MACRO --config CASE.json [--sdel SDEL.json] [--set key=value ...]
                           --low V_LOW --high V_HIGH [--width 10] [--end-time 1e-3] [--launch PREFIX] --out DIR
 
-Each run is uhpc-macro at one velocity (rounded to 1 m/s) in DIR/v<velocity>/; a run whose result.json
-exists is read, not rerun, so an interrupted bisection resumes. The bracket's ends are run first: if the
+Each run is uhpc-macro at one velocity (rounded to 1 m/s) in DIR/v<velocity>/. A run whose result.json
+exists is read, not rerun, so an interrupted bisection resumes, but only if it was made from the same
+inputs: its provenance.config_hash must equal `uhpc-macro ... --inputs-hash` of the run this bisection
+would make (the case with every --set, the end time and the files read); otherwise the bisection stops
+(exit 2) naming the run, rather than mix runs of another case. The bracket's ends are run first: if the
 low end perforates (or the high end does not) the bracket is widened by its own width on that side,
 down to 50 m/s. A run counts as perforating when result.json says "perforated"; embedded, rebounded and
 undecided runs do not perforate (an undecided one is flagged: its end time was too short to decide it).
+A run that fails (a numerical failure: exit 1, DIR/v<velocity>/diagnostic.json) is recorded as failed and
+the bisection goes on around it (the bracket's midpoint, then a quarter of the bracket to either side),
+up to --max-failures failed runs; the bracket it could establish is reported, and the exit code is 1 if
+it is wider than --width. A failed end of the bracket stops the bisection.
 --launch puts a launcher before each run, split as a shell would (e.g. --launch "srun -N1 -n1 -c2
 --exclusive" inside a Slurm allocation: docs/cluster.md); empty (default): the runs start here.
 Writes DIR/ballistic_limit.json and DIR/ballistic_limit.md (the bracket, every run in the order it was
-made, with its outcome and residual velocity).
+made, with its outcome and residual velocity, the failed runs with their diagnostics).
 """
 import argparse
 import json
@@ -24,6 +31,38 @@ import subprocess
 import sys
 
 
+def macro_command(args, velocity, out):
+    """uhpc-macro at one velocity, without the launcher and the output options."""
+    cmd = [args.macro, "--config", args.config, "--set", f"projectile.velocity_m_s={velocity}",
+           "--set", f"run.end_time_s={args.end_time}"]
+    if args.sdel:
+        cmd += ["--sdel", args.sdel]
+    for s in args.set or []:
+        cmd += ["--set", s]
+    return cmd
+
+
+def check_reusable(args, velocity, out, found):
+    """Stops (exit 2) unless the run in `out` (its inputs' hash `found`) was made from the inputs this
+    bisection would give it."""
+    expected = subprocess.run(macro_command(args, velocity, out) + ["--inputs-hash"], capture_output=True, text=True)
+    if expected.returncode != 0:
+        sys.exit(f"ballistic_limit.py: uhpc-macro --inputs-hash failed at {velocity} m/s: {expected.stderr.strip()}")
+    if found != expected.stdout.strip():
+        print(f"ballistic_limit.py: the run in {out} was made from other inputs (hash {found}, this bisection's "
+              f"{expected.stdout.strip()}: another case, SDEL, --set or end time); use another --out or remove it",
+              file=sys.stderr)
+        sys.exit(2)
+
+
+def failed_run(runs, velocity, out, exit_code):
+    diagnostic = out / "diagnostic.json"
+    runs.append({"velocity_m_s": velocity, "outcome": "failed", "perforated": None, "exit_code": exit_code,
+                 "residual_velocity_m_s": None, "final_velocity_m_s": None, "end_time_s": None,
+                 "diagnostic": str(diagnostic) if diagnostic.is_file() else None, "run": str(out)})
+    return runs[-1]
+
+
 def run(args, velocity, runs):
     """The outcome at one velocity; a velocity is listed in runs once, however often the bisection asks."""
     for r in runs:
@@ -31,22 +70,46 @@ def run(args, velocity, runs):
             return r
     out = pathlib.Path(args.out) / f"v{velocity}"
     result = out / "result.json"
-    if not result.is_file():
-        cmd = shlex.split(args.launch) + [args.macro, "--config", args.config, "-q", "--out", str(out),
-               "--set", f"projectile.velocity_m_s={velocity}", "--set", f"run.end_time_s={args.end_time}"]
-        if args.sdel:
-            cmd += ["--sdel", args.sdel]
-        for s in args.set or []:
-            cmd += ["--set", s]
+    diagnostic = out / "diagnostic.json"
+    if result.is_file():
+        r = json.loads(result.read_text())
+        check_reusable(args, velocity, out, r.get("provenance", {}).get("config_hash"))
+    elif diagnostic.is_file():  # failed before, from these inputs (config.json holds them): not rerun
+        check_reusable(args, velocity, out, json.loads((out / "config.json").read_text()).get("hash"))
+        return failed_run(runs, velocity, out, None)
+    else:
+        cmd = shlex.split(args.launch) + macro_command(args, velocity, out) + ["-q", "--out", str(out)]
         print("ballistic_limit.py:", " ".join(cmd), flush=True)
         done = subprocess.run(cmd)
+        if done.returncode == 2:  # bad input: every other run would fail the same way
+            sys.exit(f"ballistic_limit.py: uhpc-macro refused the input at {velocity} m/s (exit 2, above)")
         if done.returncode != 0:
-            sys.exit(f"ballistic_limit.py: the run at {velocity} m/s failed (exit {done.returncode}); see {out}")
-    r = json.loads(result.read_text())
+            print(f"ballistic_limit.py: the run at {velocity} m/s failed (exit {done.returncode}); see {out}",
+                  file=sys.stderr, flush=True)
+            return failed_run(runs, velocity, out, done.returncode)
+        r = json.loads(result.read_text())
     runs.append({"velocity_m_s": velocity, "outcome": r.get("outcome", "perforated" if r["perforated"] else "not perforated"),
                  "perforated": bool(r["perforated"]), "residual_velocity_m_s": r["residual_velocity_m_s"],
                  "final_velocity_m_s": r["final_velocity_m_s"], "end_time_s": r["end_time_s"], "run": str(out)})
     return runs[-1]
+
+
+def end_of_bracket(args, velocity, runs):
+    """A run at an end of the bracket, which must decide: a failed one stops the bisection."""
+    r = run(args, velocity, runs)
+    if r["outcome"] == "failed":
+        sys.exit(f"ballistic_limit.py: the run at {velocity} m/s failed at an end of the bracket; see {r['run']}")
+    return r
+
+
+def next_velocity(lo, hi, failed):
+    """The bracket's midpoint, or a quarter of the bracket to either side of it if the midpoint failed."""
+    mid = int(round(0.5 * (lo + hi)))
+    quarter = max(1, int(round(0.25 * (hi - lo))))
+    for v in (mid, mid + quarter, mid - quarter):
+        if lo < v < hi and v not in failed:
+            return v
+    return None
 
 
 def main():
@@ -60,6 +123,7 @@ def main():
     ap.add_argument("--high", type=float, required=True)
     ap.add_argument("--width", type=float, default=10.0)
     ap.add_argument("--end-time", type=float, default=1e-3)
+    ap.add_argument("--max-failures", type=int, default=3, help="failed runs inside the bracket before it stops")
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     if not (0 < args.low < args.high) or args.width <= 0:
@@ -69,29 +133,33 @@ def main():
     lo, hi = int(round(args.low)), int(round(args.high))
     step = hi - lo
     while True:  # the low end must not perforate
-        r = run(args, lo, runs)
+        r = end_of_bracket(args, lo, runs)
         if not r["perforated"]:
             break
         hi, lo = lo, max(50, lo - step)
         if hi == 50:
             sys.exit("ballistic_limit.py: every velocity down to 50 m/s perforates")
     while True:  # the high end must perforate
-        r = run(args, hi, runs)
+        r = end_of_bracket(args, hi, runs)
         if r["perforated"]:
             break
         lo, hi = hi, hi + step
-    while hi - lo > args.width:
-        mid = int(round(0.5 * (lo + hi)))
-        if mid in (lo, hi):
+    failed = []
+    while hi - lo > args.width and len(failed) < args.max_failures:
+        mid = next_velocity(lo, hi, failed)
+        if mid is None or mid in (lo, hi):
             break
         r = run(args, mid, runs)
-        if r["perforated"]:
+        if r["outcome"] == "failed":
+            failed.append(mid)
+        elif r["perforated"]:
             hi = mid
         else:
             lo = mid
     undecided = [r["velocity_m_s"] for r in runs if r["outcome"] == "undecided"]
     summary = {"highest_not_perforating_m_s": lo, "lowest_perforating_m_s": hi, "bracket_width_m_s": hi - lo,
-               "estimate_m_s": 0.5 * (lo + hi), "runs": runs, "undecided_runs_m_s": undecided,
+               "estimate_m_s": 0.5 * (lo + hi), "runs": runs, "undecided_runs_m_s": undecided, "failed_runs_m_s": failed,
+               "width_reached": hi - lo <= args.width,
                "config": args.config, "sdel": args.sdel, "overrides": args.set or [], "end_time_s": args.end_time}
     out = pathlib.Path(args.out)
     (out / "ballistic_limit.json").write_text(json.dumps(summary, indent=2) + "\n")
@@ -99,13 +167,18 @@ def main():
           f"{0.5 * (lo + hi):.0f} +- {0.5 * (hi - lo):.0f} m/s, {len(runs)} runs.", "",
           "| order | v0 m/s | outcome | residual m/s | final m/s | end us |", "|---|---|---|---|---|---|"]
     for k, r in enumerate(runs, 1):
-        vr = r["residual_velocity_m_s"]
+        vr, vf, end = r["residual_velocity_m_s"], r["final_velocity_m_s"], r["end_time_s"]
         md.append(f"| {k} | {r['velocity_m_s']} | {r['outcome']} | {'-' if vr is None else f'{vr:.1f}'} | "
-                  f"{r['final_velocity_m_s']:.1f} | {r['end_time_s'] * 1e6:.0f} |")
+                  f"{'-' if vf is None else f'{vf:.1f}'} | {'-' if end is None else f'{end * 1e6:.0f}'} |")
     if undecided:
         md += ["", f"Undecided at the end time (counted as not perforating): {undecided} m/s."]
+    if failed:
+        md += ["", f"Failed runs (numerical failure; their diagnostic.json beside them), bisected around: {failed} m/s."]
+    if not summary["width_reached"]:
+        md += ["", f"The bracket is {hi - lo} m/s wide, wider than the {args.width:g} m/s asked: the runs inside it failed."]
     (out / "ballistic_limit.md").write_text("\n".join(md) + "\n")
     print("\n".join(md))
+    sys.exit(0 if summary["width_reached"] else 1)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 // uhpc-macro: one 3D penetration run (docs/architecture.md section 2).
 //
 //   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q] [--restart]
+//   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --inputs-hash
 //
 // Writes DIR/result.json, DIR/history.csv and DIR/fields.h5 + DIR/fields.xdmf (ParaView); on a
 // numerical failure, the last good state in fields.h5 and DIR/diagnostic.json (exit code 1). Bad input:
@@ -21,14 +22,18 @@ int main(int argc, char** argv) {
   app.add_option("--config", args.config_path, "case configuration (JSON), e.g. data/macro_elastic_block.json")
       ->required();
   app.add_option("--sdel", args.sdel_path, "SDEL handoff (sdel.json); validated, used by laws with the SDEL");
-  app.add_option("--out", out, "output directory")->required();
+  app.add_option("--out", out, "output directory (required unless --inputs-hash)");
   app.add_flag("-q,--quiet", args.quiet, "warnings and errors only");
   app.add_flag("--restart", args.restart,
                "go on from OUT/checkpoint.h5 (a run of the same case, --sdel, --set and build with "
                "run.checkpoint_interval_steps > 0) instead of starting at t = 0");
+  app.add_flag("--inputs-hash", args.inputs_hash,
+               "print the hash of this run's inputs (the case with --set, the files it reads: result.json's "
+               "provenance.config_hash) and exit, writing nothing");
   uhpc::add_set_option(app, args.overrides);
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);
+    if (out.empty() && !args.inputs_hash) throw CLI::RequiredError("--out");
     uhpc::init_logging("uhpc-macro", args.quiet ? uhpc::Verbosity::Quiet : uhpc::Verbosity::Normal);
     args.out = out;
     uhpc::macro::run_macro(args);

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <iostream>
 #include <optional>
 #include <ostream>
 
@@ -147,6 +148,10 @@ void run_macro(const MacroRunArgs& args) {
     spdlog::info("the '{}' law does not use the SDEL: {} was validated and is ignored", material.model, args.sdel_path);
 
   const RunInputs inputs = run_inputs(cfg, args.config_path, args.overrides, args.sdel_path, material.inputs);
+  if (args.inputs_hash) {
+    std::cout << inputs.hash << std::endl;
+    return;
+  }
   const fs::path checkpoint_file = args.out / "checkpoint.h5";
   std::optional<RunCheckpoint> resumed;
   if (args.restart) resumed = read_checkpoint(checkpoint_file, inputs.hash);

@@ -19,6 +19,8 @@ struct MacroRunArgs {
   // Go on from out/checkpoint.h5 (written by a run of the same case, --sdel and --set, and the same
   // build, with run.checkpoint_interval_steps > 0) instead of starting at t = 0.
   bool restart = false;
+  // Only print the hash of the inputs (what result.json's provenance.config_hash would be) and return.
+  bool inputs_hash = false;
 };
 
 void run_macro(const MacroRunArgs& args);

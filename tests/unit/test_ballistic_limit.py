@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """pipelines/ballistic_limit.py against a stand-in for uhpc-macro whose sphere perforates at and above a
 known limit (237 m/s): the bracket must contain it to the stated width, each velocity must be run and
-listed once, and a run that fails must stop the bisection with the run named."""
+listed once; a run that fails inside the bracket is recorded and bisected around (not rerun on resume),
+one at an end of the bracket stops it; too many failures report the bracket reached (exit 1); a resume
+reuses a run only if it was made from the same inputs (exit 2 otherwise)."""
 import json
-import os
 import pathlib
 import subprocess
 import sys
@@ -11,33 +12,42 @@ import tempfile
 
 SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "pipelines" / "ballistic_limit.py"
 
-# The stand-in reads --out and projectile.velocity_m_s like uhpc-macro, counts its calls, and writes a
-# result.json: perforated at and above LIMIT, embedded below; exit 1 at FAIL_AT.
+# The stand-in reads --out and projectile.velocity_m_s like uhpc-macro, counts its runs, and writes
+# config.json (the inputs' hash) and a result.json: perforated at and above LIMIT, embedded below; at a
+# velocity of FAIL_AT, config.json and diagnostic.json and exit 1. --inputs-hash prints the hash of its
+# arguments but --out and -q, as uhpc-macro prints the hash of its inputs.
 STAND_IN = """#!{python}
-import json, pathlib, sys
-a = sys.argv
+import hashlib, json, pathlib, sys
+a = sys.argv[1:]
+inputs = [s for i, s in enumerate(a) if s not in ("-q", "--out", "--inputs-hash") and (i == 0 or a[i - 1] != "--out")]
+h = hashlib.sha1(" ".join(inputs).encode()).hexdigest()[:16]
+if "--inputs-hash" in a:
+    print(h)
+    sys.exit(0)
 out = pathlib.Path(a[a.index("--out") + 1])
 v = [int(float(s.split("=")[1])) for s in a if s.startswith("projectile.velocity_m_s=")][0]
 calls = out.parent / "calls.txt"
 calls.write_text((calls.read_text() if calls.exists() else "") + f"{{v}}\\n")
-if v == {fail_at}:
-    sys.exit(1)
 out.mkdir(parents=True, exist_ok=True)
+(out / "config.json").write_text(json.dumps({{"hash": h}}))
+if v in {fail_at}:
+    (out / "diagnostic.json").write_text("{{}}")
+    sys.exit(1)
 p = v >= {limit}
 (out / "result.json").write_text(json.dumps({{"outcome": "perforated" if p else "embedded", "perforated": p,
     "residual_velocity_m_s": 0.2 * v if p else None, "final_velocity_m_s": 0.2 * v if p else 0.0,
-    "end_time_s": 1e-3}}))
+    "end_time_s": 1e-3, "provenance": {{"config_hash": h}}}}))
 """
 
 
-def bisect(tmp, low, high, fail_at=-1):
+def bisect(tmp, low, high, fail_at=(), end_time="1e-3"):
     macro = pathlib.Path(tmp) / "macro.py"
-    macro.write_text(STAND_IN.format(python=sys.executable, limit=237, fail_at=fail_at))
+    macro.write_text(STAND_IN.format(python=sys.executable, limit=237, fail_at=list(fail_at)))
     macro.chmod(0o755)
     out = pathlib.Path(tmp) / "bl"
     done = subprocess.run([sys.executable, str(SCRIPT), "--macro", str(macro), "--config", "case.json",
-                           "--low", str(low), "--high", str(high), "--width", "10", "--out", str(out)],
-                          capture_output=True, text=True)
+                           "--low", str(low), "--high", str(high), "--width", "10", "--end-time", end_time,
+                           "--out", str(out)], capture_output=True, text=True)
     calls = (out / "calls.txt").read_text().split() if (out / "calls.txt").exists() else []
     return done, out, [int(c) for c in calls]
 
@@ -53,9 +63,12 @@ def main():
         check(done.returncode == 0, done.stderr)
         s = json.loads((out / "ballistic_limit.json").read_text())
         check(s["highest_not_perforating_m_s"] < 237 <= s["lowest_perforating_m_s"], f"bracket {s}")
-        check(s["bracket_width_m_s"] <= 10, f"width {s['bracket_width_m_s']}")
+        check(s["bracket_width_m_s"] <= 10 and s["width_reached"], f"width {s['bracket_width_m_s']}")
         check(len(calls) == len(set(calls)), f"a velocity was run twice: {calls}")
         check(len(s["runs"]) == len(calls), "every run listed once")
+        # a resume with another end time finds runs made from other inputs: stops, runs nothing
+        done, out, again = bisect(tmp, 200, 300, end_time="2e-3")
+        check(done.returncode == 2 and "other inputs" in done.stderr and again == calls, done.stderr)
     with tempfile.TemporaryDirectory() as tmp:  # the bracket above the limit: widened downward
         done, out, calls = bisect(tmp, 260, 300)
         check(done.returncode == 0, done.stderr)
@@ -65,10 +78,25 @@ def main():
         # resuming reads every result and runs nothing
         done, out, again = bisect(tmp, 260, 300)
         check(done.returncode == 0 and again == calls, f"resume reran: {again} after {calls}")
-    with tempfile.TemporaryDirectory() as tmp:  # a failed run stops the bisection, named
-        done, out, calls = bisect(tmp, 200, 300, fail_at=250)
-        check(done.returncode != 0 and "250 m/s failed" in done.stderr, done.stderr)
-    print("ballistic_limit.py: bracket, widening, resume and failure as documented")
+    with tempfile.TemporaryDirectory() as tmp:  # a failed run inside the bracket: recorded, bisected around
+        done, out, calls = bisect(tmp, 200, 300, fail_at=[250])
+        check(done.returncode == 0, done.stderr)
+        s = json.loads((out / "ballistic_limit.json").read_text())
+        check(s["failed_runs_m_s"] == [250] and s["highest_not_perforating_m_s"] < 237 <= s["lowest_perforating_m_s"]
+              and s["width_reached"], f"bracket {s}")
+        failed = [r for r in s["runs"] if r["outcome"] == "failed"]
+        check(len(failed) == 1 and failed[0]["diagnostic"], f"failed runs {failed}")
+        check("250" in (out / "ballistic_limit.md").read_text().split("Failed runs")[1], "the report names the failed run")
+        done, out, again = bisect(tmp, 200, 300, fail_at=[250])  # a resume does not rerun the failed run
+        check(done.returncode == 0 and again == calls, f"resume reran: {again} after {calls}")
+    with tempfile.TemporaryDirectory() as tmp:  # three failures: the bracket reached, exit 1
+        done, out, calls = bisect(tmp, 200, 300, fail_at=[250, 275, 225])
+        s = json.loads((out / "ballistic_limit.json").read_text())
+        check(done.returncode == 1 and not s["width_reached"] and s["bracket_width_m_s"] == 100, f"{done.returncode} {s}")
+    with tempfile.TemporaryDirectory() as tmp:  # a failed end of the bracket stops the bisection, named
+        done, out, calls = bisect(tmp, 200, 300, fail_at=[200])
+        check(done.returncode != 0 and "200 m/s failed at an end" in done.stderr, done.stderr)
+    print("ballistic_limit.py: bracket, widening, resume, reuse check and failures as documented")
 
 
 if __name__ == "__main__":

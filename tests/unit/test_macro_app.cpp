@@ -8,6 +8,7 @@
 #include <cstring>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -187,6 +188,31 @@ TEST_F(MacroApp, TheRunRecordsEveryFileItReadAndTheSdelItUsed) {
   EXPECT_EQ(config_b.at("files")[2].at("path"), other_path);
   EXPECT_EQ(config_b.at("sdel").at("A"), 3e-4);
   EXPECT_NE(result_b.at("provenance").at("config_hash"), result_a.at("provenance").at("config_hash"));
+}
+
+// --inputs-hash prints what the run's result.json would carry as provenance.config_hash (the pipelines
+// reuse a run only when the two agree) and writes nothing; another --set gives another hash.
+TEST_F(MacroApp, InputsHashIsTheRunsConfigHashAndWritesNothing) {
+  MacroRunArgs args;
+  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  args.overrides = {"run.end_time_s=1e-7"};
+  args.out = dir_ / "run";
+  args.quiet = true;
+  const auto hash_of = [](MacroRunArgs a) {
+    a.inputs_hash = true;
+    a.out = "";
+    testing::internal::CaptureStdout();
+    run_macro(a);
+    return testing::internal::GetCapturedStdout();
+  };
+  const std::string printed = hash_of(args);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "run"));
+  run_macro(args);
+  const auto result = nlohmann::json::parse(test::read_file(dir_ / "run" / "result.json"));
+  EXPECT_EQ(printed, result.at("provenance").at("config_hash").get<std::string>() + "\n");
+  MacroRunArgs other = args;
+  other.overrides.push_back("projectile.velocity_m_s=101");
+  EXPECT_NE(hash_of(other), printed);
 }
 
 // A run its first stable step cannot finish within run.max_steps is refused before it starts (exit 2,
