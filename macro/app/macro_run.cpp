@@ -154,7 +154,7 @@ void run_macro(const MacroRunArgs& args) {
   }
   const fs::path checkpoint_file = args.out / "checkpoint.h5";
   std::optional<RunCheckpoint> resumed;
-  if (args.restart) resumed = read_checkpoint(checkpoint_file, inputs.hash);
+  if (args.restart) resumed = read_checkpoint(checkpoint_file, inputs.restart_hash);
   fs::create_directories(args.out);
   for (const char* stale : {"result.json", "diagnostic.json"}) fs::remove(args.out / stale);
   if (!resumed) {
@@ -202,7 +202,7 @@ void run_macro(const MacroRunArgs& args) {
     solver.drop_shape_cache();
     history.save(args.out / "history.csv");
     write_checkpoint(checkpoint_file, {solver.checkpoint(), history.text(), history.rows(), impact, balance,
-                                       fields.state(), inputs.hash, checkpoint_build()});
+                                       fields.state(), inputs.restart_hash, checkpoint_build()});
   };
   const auto finished = [&] {
     const bool stop_after_outcome = impact.decided() && settings.run.stop_after_outcome_s >= 0 &&
@@ -265,7 +265,10 @@ void run_macro(const MacroRunArgs& args) {
   nlohmann::json result = result_json(solver, impact, balance, material.model, wall, provenance, fields.steps_written());
   result["inputs"] = inputs_summary(inputs);
   write_text_atomic(args.out / "result.json", result.dump(2) + "\n");
-  fs::remove(checkpoint_file);  // the run is complete: its results replace the checkpoint
+  // A decided run is complete: its results replace the checkpoint. An undecided one keeps its last state
+  // as one, so that --restart with a later run.end_time_s carries it on instead of starting again.
+  if (impact.decided()) fs::remove(checkpoint_file);
+  else write_checkpoint_now();
   spdlog::info("{} steps ({} repeated) in {:.2f} s, {:.3g} particle-steps/s; sphere v_z {:.2f} m/s ({}); energy "
                "balance {:.2e}, momentum balance {:.2e}",
                solver.steps(), solver.step_repeats(), wall, result["particle_steps_per_s"].get<double>(),

@@ -46,9 +46,13 @@ RunInputs run_inputs(const Config& cfg, const std::string& case_file, const std:
   RunInputs r;
   r.record = {{"case_file", case_file}, {"overrides", overrides}, {"case", cfg.json()}, {"files", files},
               {"sdel", sdel}};
-  std::string all = cfg.hash();
-  for (const auto& f : files) all += f.at("fnv1a64").get<std::string>();
-  r.hash = fnv1a64_hex(all);
+  std::string file_hashes;
+  for (const auto& f : files) file_hashes += f.at("fnv1a64").get<std::string>();
+  r.hash = fnv1a64_hex(cfg.hash() + file_hashes);
+  nlohmann::json resumable = cfg.json();
+  if (resumable.contains("run"))
+    for (const char* key : kRestartMayChange) resumable["run"].erase(key);
+  r.restart_hash = fnv1a64_hex(fnv1a64_hex(resumable.dump()) + file_hashes);
   r.record["hash"] = r.hash;
   return r;
 }

@@ -14,9 +14,14 @@
 namespace uhpc::macro {
 
 struct RunInputs {
-  nlohmann::json record;  // config.json
-  std::string hash;       // fnv1a64 of the case document and of every file read
+  nlohmann::json record;     // config.json
+  std::string hash;          // fnv1a64 of the case document and of every file read
+  std::string restart_hash;  // the same without the keys a restart may change (kRestartMayChange)
 };
+
+// The keys of `run` a restart may change: when the run ends and how often it writes; nothing that the
+// state it resumes depends on.
+inline constexpr const char* kRestartMayChange[] = {"end_time_s", "output_interval_steps", "checkpoint_interval_steps"};
 
 // `case_file` and `overrides` as given; `sdel_path` the --sdel argument ("" without).
 RunInputs run_inputs(const Config& cfg, const std::string& case_file, const std::vector<std::string>& overrides,

@@ -103,7 +103,9 @@ TEST_F(MacroCheckpoint, AKilledRunRestartedFromItsCheckpointEqualsTheUnstoppedRu
   whole.out = dir_ / "whole";
   whole.quiet = true;
   run_macro(whole);
-  EXPECT_FALSE(fs::exists(whole.out / "checkpoint.h5"));  // a finished run removes it
+  // 60 us does not decide the shot: the run keeps its last state as a checkpoint (a decided run removes it)
+  EXPECT_EQ(nlohmann::json::parse(test::read_file(whole.out / "result.json")).at("outcome"), "undecided");
+  EXPECT_TRUE(fs::exists(whole.out / "checkpoint.h5"));
 
   MacroRunArgs split = whole;
   split.out = dir_ / "split";
@@ -146,6 +148,50 @@ TEST_F(MacroCheckpoint, AKilledRunRestartedFromItsCheckpointEqualsTheUnstoppedRu
     for (const std::string& field : fa.children(step))
       EXPECT_TRUE(same_bits(fa.read_doubles(step + "/" + field).values, fb.read_doubles(step + "/" + field).values))
           << step << "/" << field;
+}
+
+// An undecided run keeps its last state as a checkpoint; --restart with a later end time carries it on
+// and ends as the run made with that end time from the start (rows rebuilt every step, so that the
+// checkpoint's dropped shape cache changes nothing): the same history.csv and result (but for the clocks,
+// the provenance and the field outputs, which gain the first run's last state). Another end time is the
+// only change of the case a restart takes: a decided run removes its checkpoint.
+TEST_F(MacroCheckpoint, AnUndecidedRunIsExtendedByARestartWithALaterEndTime) {
+  const auto args_to = [&](const std::string& name, const std::string& end_time) {
+    MacroRunArgs a;
+    a.config_path = kCase;
+    a.overrides = {"solver.shape_reuse_tolerance=0", "run.end_time_s=" + end_time};
+    a.out = dir_ / name;
+    a.quiet = true;
+    return a;
+  };
+  MacroRunArgs whole = args_to("whole", "6e-5");
+  run_macro(whole);
+  MacroRunArgs extended = args_to("extended", "3e-5");  // 30 us: the sphere is still in the disc
+  run_macro(extended);
+  const auto outcome = [](const fs::path& dir) {
+    return nlohmann::json::parse(test::read_file(dir / "result.json")).at("outcome").get<std::string>();
+  };
+  ASSERT_EQ(outcome(extended.out), "undecided");
+  ASSERT_TRUE(fs::exists(extended.out / "checkpoint.h5"));
+  extended.overrides.back() = "run.end_time_s=6e-5";
+  extended.restart = true;
+  run_macro(extended);
+  EXPECT_EQ(test::read_file(extended.out / "history.csv"), test::read_file(whole.out / "history.csv"));
+  nlohmann::json a = nlohmann::json::parse(test::read_file(whole.out / "result.json"));
+  nlohmann::json b = nlohmann::json::parse(test::read_file(extended.out / "result.json"));
+  for (const char* clock : {"wall_time_s", "particle_steps_per_s", "peak_memory_MB", "provenance", "field_outputs"}) {
+    a.erase(clock);
+    b.erase(clock);
+  }
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(fs::exists(extended.out / "checkpoint.h5"), outcome(extended.out) == "undecided");
+  // Anything else changed is another case.
+  extended.overrides.push_back("projectile.velocity_m_s=800");
+  extended.restart = true;
+  MacroRunArgs fresh = args_to("extended", "3e-5");
+  run_macro(fresh);
+  const std::string other = test::error_of<InputError>([&] { run_macro(extended); });
+  EXPECT_NE(other.find("written for a case whose hash is"), std::string::npos) << other;
 }
 
 // A checkpoint of another case or another build is refused with one line naming the file.
