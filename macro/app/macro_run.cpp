@@ -16,6 +16,7 @@
 #include "material_factory.hpp"
 #include "run_inputs.hpp"
 #include "run_outputs.hpp"
+#include "run_warnings.hpp"
 #include "uhpc/atomic_file.hpp"
 #include "uhpc/config.hpp"
 #include "uhpc/errors.hpp"
@@ -176,6 +177,8 @@ void run_macro(const MacroRunArgs& args) {
   spdlog::info("{} particles, material '{}', sphere {} kg at {} m/s, first step {:.3e} s, end time {:.3e} s",
                solver.particles().n, material.model, settings.projectile.mass_kg, settings.projectile.velocity_m_s,
                solver.dt(), settings.run.end_time_s);
+  std::vector<RunWarning> warnings = warnings_before_run(settings, settings.solver.energy_error_limit);
+  for (const RunWarning& w : warnings) spdlog::warn("{}", w.message);
 
   std::optional<FieldOutput> field_output;
   if (resumed) field_output.emplace(args.out, solver.material(), resumed->fields);
@@ -264,6 +267,11 @@ void run_macro(const MacroRunArgs& args) {
   history.save(args.out / "history.csv");
   nlohmann::json result = result_json(solver, impact, balance, material.model, wall, provenance, fields.steps_written());
   result["inputs"] = inputs_summary(inputs);
+  for (RunWarning& w : warnings_after_run(solver.ledger())) {
+    spdlog::warn("{}", w.message);
+    warnings.push_back(std::move(w));
+  }
+  result["warnings"] = warnings_json(warnings);
   write_text_atomic(args.out / "result.json", result.dump(2) + "\n");
   // A decided run is complete: its results replace the checkpoint. An undecided one keeps its last state
   // as one, so that --restart with a later run.end_time_s carries it on instead of starting again.

@@ -1,0 +1,50 @@
+#include "run_warnings.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace uhpc::macro {
+
+std::vector<RunWarning> warnings_before_run(const CaseSettings& settings, double energy_error_limit) {
+  std::vector<RunWarning> w;
+  const TargetSettings& t = settings.target;
+  const double h = t.shape == TargetSettings::Shape::Box ? t.box_spacing_m
+                                                         : disc_spacing_at(t.disc, std::abs(settings.projectile.offset_m));
+  const double across = t.thickness_m() / h;
+  if (across < kMinParticlesThroughThickness)
+    w.push_back({"thin_target", fmt::format("the target is {:.1f} particles thick at the impact point ({:.2f} mm at "
+                                            "{:.2f} mm spacing), fewer than {:g}: its penetration is not resolved",
+                                            across, t.thickness_m() * 1e3, h * 1e3, kMinParticlesThroughThickness)});
+  if (energy_error_limit == 0.0)
+    w.push_back({"energy_check_off", "solver.energy_error_limit = 0: the energy balance is not checked, an unstable "
+                                     "run goes on (read energy.balance_error in result.json)"});
+  return w;
+}
+
+std::vector<RunWarning> warnings_after_run(const EnergyLedger& e) {
+  std::vector<RunWarning> w;
+  const double lost = e.kinetic_initial - e.kinetic_sphere;
+  if (!(lost > 0.0)) return w;
+  const double contact = e.contact / lost, stabilization = e.stabilization_dissipated() / lost;
+  if (contact + stabilization > kMaxNumericalShare)
+    w.push_back({"numerical_dissipation",
+                 fmt::format("the contact ({:.0f} %) and the NSNI stabilization ({:.0f} %) took {:.0f} % of the sphere's "
+                             "lost kinetic energy, more than {:.0f} %: the result depends on the discretization more "
+                             "than on the material",
+                             100 * contact, 100 * stabilization, 100 * (contact + stabilization), 100 * kMaxNumericalShare)});
+  if (stabilization < 0.0)
+    w.push_back({"negative_stabilization",
+                 fmt::format("the NSNI stabilization gave back {:.1f} % of the sphere's lost kinetic energy (negative "
+                             "dissipation): the stabilization is not dissipative here",
+                             -100 * stabilization)});
+  return w;
+}
+
+nlohmann::json warnings_json(const std::vector<RunWarning>& warnings) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const RunWarning& r : warnings) j.push_back({{"code", r.code}, {"message", r.message}});
+  return j;
+}
+
+}  // namespace uhpc::macro

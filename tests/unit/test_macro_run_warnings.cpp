@@ -1,0 +1,58 @@
+// The guard-rails of a run (macro/app/run_warnings.hpp): each warning where its threshold is crossed and
+// not where it is not, on the shipped cases' settings and on ledgers built by hand.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "case_config.hpp"
+#include "run_warnings.hpp"
+#include "uhpc/config.hpp"
+
+namespace uhpc::macro {
+namespace {
+
+CaseSettings settings_of(const std::string& case_file, const std::vector<std::string>& overrides = {}) {
+  return read_case(Config::load(std::string(UHPC_DATA_DIR) + "/" + case_file, overrides));
+}
+
+std::vector<std::string> codes(const std::vector<RunWarning>& warnings) {
+  std::vector<std::string> c;
+  for (const RunWarning& w : warnings) c.push_back(w.code);
+  return c;
+}
+
+TEST(MacroRunWarnings, ATargetFewerThanFiveParticlesThickIsFlagged) {
+  using V = std::vector<std::string>;
+  // The shipped disc: 31.75 mm at 3 mm (10.6 across); the coarse disc: 6 mm (5.3 across).
+  EXPECT_EQ(codes(warnings_before_run(settings_of("macro_disc_afc.json"), 0.05)), V{});
+  EXPECT_EQ(codes(warnings_before_run(settings_of("macro_disc_afc_coarse.json"), 0.05)), V{});
+  // 20 mm at 6 mm: 3.3 across.
+  const auto thin = warnings_before_run(settings_of("macro_disc_afc_coarse.json", {"target.thickness_m=0.02"}), 0.05);
+  ASSERT_EQ(codes(thin), V{"thin_target"});
+  EXPECT_NE(thin[0].message.find("3.3 particles thick"), std::string::npos) << thin[0].message;
+  // Off the axis of the graded disc the spacing grows: the coarse disc 70 mm out is 7.5 mm apart, 4.2 across.
+  EXPECT_EQ(codes(warnings_before_run(settings_of("macro_disc_afc_coarse.json", {"projectile.offset_m=0.07"}), 0.05)),
+            V{"thin_target"});
+  EXPECT_EQ(codes(warnings_before_run(settings_of("macro_disc_afc.json"), 0.0)), V{"energy_check_off"});
+}
+
+TEST(MacroRunWarnings, NumericalSharesAboveTheThresholdOrNegativeStabilizationAreFlagged) {
+  using V = std::vector<std::string>;
+  EnergyLedger e;
+  e.kinetic_initial = 1000.0;
+  e.kinetic_sphere = 0.0;  // the sphere lost 1000 J
+  e.contact = 300.0;
+  e.stabilization = 150.0;  // dissipated: stabilization - stored
+  EXPECT_EQ(codes(warnings_after_run(e)), V{});  // 45 %
+  e.stabilization = 250.0;                       // 55 %
+  const auto high = warnings_after_run(e);
+  ASSERT_EQ(codes(high), V{"numerical_dissipation"});
+  EXPECT_NE(high[0].message.find("took 55 %"), std::string::npos) << high[0].message;
+  e.stabilization = -20.0;
+  EXPECT_EQ(codes(warnings_after_run(e)), V{"negative_stabilization"});
+  e.kinetic_sphere = e.kinetic_initial;  // nothing lost: nothing to share
+  EXPECT_EQ(codes(warnings_after_run(e)), V{});
+}
+
+}  // namespace
+}  // namespace uhpc::macro
