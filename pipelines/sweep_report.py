@@ -175,6 +175,8 @@ def thickness(args):
         if len(above) >= 2:  # two constants: at least two perforating runs determine them
             fit = lj.fit([r["impact_velocity_m_s"] for r in decided], [r["residual_velocity_m_s"] for r in decided],
                          p_fixed=2.0)
+            # a and v_bl from as many runs leave nothing to test the fit against: its RMS is 0 by construction
+            fit["degrees_of_freedom"] = len(decided) - 2
         studies.append({"thickness_m": t, "runs": rows, "ballistic_limit_bracket_m_s": bracket,
                         "lambert_jonas_p2": fit,
                         "undecided": [r["impact_velocity_m_s"] for r in rows if r["residual_velocity_m_s"] is None]})
@@ -197,11 +199,12 @@ def thickness(args):
         f = s["lambert_jonas_p2"]
         md.append(f"| {s['thickness_m'] * 1e3:.2f} | {len(s['runs'])} | {vr_cells} | {br} | "
                   + (f"{f['v_bl_m_s']:.1f}{'' if f['v_bl_bracketed'] else ' (extrapolated)'} | {f['a']:.3f} | "
-                     f"{f['rms_m_s']:.1f} |" if f else "fewer than 2 perforating runs | | |"))
+                     + (f"{f['rms_m_s']:.1f} |" if f["degrees_of_freedom"] > 0 else "exact: 2 runs, 2 constants |")
+                     if f else "fewer than 2 perforating runs | | |"))
     md += ["", "Ballistic limit: the bracket is the fastest run that did not perforate .. the slowest that did "
            "(empty end: none); v_bl is the Lambert-Jonas fit of that thickness's runs with p held at 2 "
            "(vr = a (v^2 - v_bl^2)^(1/2); at least two perforating runs), undecided runs left out; with few "
-           "velocities trust the bracket first. (extrapolated): every run of that thickness perforated, so v_bl "
+           "velocities trust the bracket first. exact: the fit passes through its two runs and tests nothing. (extrapolated): every run of that thickness perforated, so v_bl "
            "is the fitted curve's foot, not bracketed by the runs."]
     if measured:
         md += ["", "The seven shots at their measured thickness (`make shots-measured`) and the experiments:", "",

@@ -117,6 +117,11 @@ def main():
                   f"t {x['thickness_m']} v {r['impact_velocity_m_s']:g}: residual {r['residual_velocity_m_s']} "
                   "from its result.json")
     check(all(str(sweep) in r["run"] for r in ts[1]["runs"]), "the 31.75 mm runs are the sweep's")
+    # Two runs and two constants: the fit is exact and says so instead of printing an RMS of 0.
+    exact = [x for x in ts if x["lambert_jonas_p2"] and x["lambert_jonas_p2"]["degrees_of_freedom"] == 0]
+    table = (out / "thickness" / "thickness.md").read_text()
+    check(len(exact) > 0 and "exact: 2 runs, 2 constants" in table and "| 0.0 |" not in table,
+          f"{len(exact)} exact fit(s) flagged as exact in thickness.md, no RMS of 0 printed")
     thin = {r["impact_velocity_m_s"]: r["residual_velocity_m_s"] for r in ts[0]["runs"]}
     thick = {r["impact_velocity_m_s"]: r["residual_velocity_m_s"] for r in ts[1]["runs"]}
     check(all(thin[v] >= thick[v] for v in thin), f"a thinner target leaves the sphere faster: {thin} vs {thick}")
