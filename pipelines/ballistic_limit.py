@@ -13,10 +13,14 @@ would make (the case with every --set, the end time and the files read); otherwi
 low end perforates (or the high end does not) the bracket is widened by its own width on that side,
 down to 50 m/s. A run counts as perforating when result.json says "perforated"; embedded, rebounded and
 undecided runs do not perforate (an undecided one is flagged: its end time was too short to decide it).
-A run that fails (a numerical failure: exit 1, DIR/v<velocity>/diagnostic.json) is recorded as failed and
-the bisection goes on around it (the bracket's midpoint, then a quarter of the bracket to either side),
-up to --max-failures failed runs; the bracket it could establish is reported, and the exit code is 1 if
-it is wider than --width. A failed end of the bracket stops the bisection.
+A run that fails numerically (exit 1 with DIR/v<velocity>/diagnostic.json) is recorded as failed and the
+bisection goes on around it (the bracket's midpoint, then a quarter of the bracket to either side), up to
+--max-failures failed runs; the bracket it could establish is reported. A failed end of the bracket
+stops the bisection; so does any other end of a run (bad input, a signal, a launcher's error).
+Exit codes: 0 the bracket to --width; 1 no such bracket (failed runs left it wider, a failed end,
+nothing perforating up to --max-velocity, everything perforating down to 50 m/s), the reports written
+when a bracket exists; 2 bad input (the arguments, uhpc-macro's exit 2, a run made from other inputs);
+3 a run that neither finished nor failed numerically (killed, or its launcher failed).
 --launch puts a launcher before each run, split as a shell would (e.g. --launch "srun -N1 -n1 -c2
 --exclusive" inside a Slurm allocation: docs/cluster.md); empty (default): the runs start here.
 Writes DIR/ballistic_limit.json and DIR/ballistic_limit.md (the bracket, every run in the order it was
@@ -74,7 +78,7 @@ def run(args, velocity, runs):
     if result.is_file():
         r = json.loads(result.read_text())
         check_reusable(args, velocity, out, r.get("provenance", {}).get("config_hash"))
-    elif diagnostic.is_file():  # failed before, from these inputs (config.json holds them): not rerun
+    elif diagnostic.is_file() and (out / "config.json").is_file():  # failed before: not rerun if the same inputs
         check_reusable(args, velocity, out, json.loads((out / "config.json").read_text()).get("hash"))
         return failed_run(runs, velocity, out, None)
     else:
@@ -82,11 +86,16 @@ def run(args, velocity, runs):
         print("ballistic_limit.py:", " ".join(cmd), flush=True)
         done = subprocess.run(cmd)
         if done.returncode == 2:  # bad input: every other run would fail the same way
-            sys.exit(f"ballistic_limit.py: uhpc-macro refused the input at {velocity} m/s (exit 2, above)")
-        if done.returncode != 0:
-            print(f"ballistic_limit.py: the run at {velocity} m/s failed (exit {done.returncode}); see {out}",
+            print(f"ballistic_limit.py: uhpc-macro refused the input at {velocity} m/s (exit 2, above)", file=sys.stderr)
+            sys.exit(2)
+        if done.returncode == 1 and (out / "diagnostic.json").is_file():
+            print(f"ballistic_limit.py: the run at {velocity} m/s failed (exit 1); see {out}",
                   file=sys.stderr, flush=True)
             return failed_run(runs, velocity, out, done.returncode)
+        if done.returncode != 0:
+            print(f"ballistic_limit.py: the run at {velocity} m/s ended with exit {done.returncode} and no diagnostic "
+                  f"(killed, or its launcher failed); see {out}", file=sys.stderr)
+            sys.exit(3)
         r = json.loads(result.read_text())
     runs.append({"velocity_m_s": velocity, "outcome": r.get("outcome", "perforated" if r["perforated"] else "not perforated"),
                  "perforated": bool(r["perforated"]), "residual_velocity_m_s": r["residual_velocity_m_s"],
@@ -124,10 +133,13 @@ def main():
     ap.add_argument("--width", type=float, default=10.0)
     ap.add_argument("--end-time", type=float, default=1e-3)
     ap.add_argument("--max-failures", type=int, default=3, help="failed runs inside the bracket before it stops")
+    ap.add_argument("--max-velocity", type=float, default=3000.0, help="the bracket's high end is widened up to it")
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
-    if not (0 < args.low < args.high) or args.width <= 0:
-        sys.exit("ballistic_limit.py: need 0 < --low < --high and --width > 0")
+    if not (0 < args.low < args.high <= args.max_velocity) or args.width <= 0 or args.max_failures < 0:
+        print("ballistic_limit.py: need 0 < --low < --high <= --max-velocity, --width > 0, --max-failures >= 0",
+              file=sys.stderr)
+        sys.exit(2)
     pathlib.Path(args.out).mkdir(parents=True, exist_ok=True)
     runs = []
     lo, hi = int(round(args.low)), int(round(args.high))
@@ -143,6 +155,8 @@ def main():
         r = end_of_bracket(args, hi, runs)
         if r["perforated"]:
             break
+        if hi + step > args.max_velocity:
+            sys.exit(f"ballistic_limit.py: nothing perforates up to {hi} m/s (--max-velocity {args.max_velocity:g})")
         lo, hi = hi, hi + step
     failed = []
     while hi - lo > args.width and len(failed) < args.max_failures:

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "run_inputs.hpp"
 #include "uhpc/build_info.hpp"
 #include "uhpc/errors.hpp"
 #include "uhpc/hdf5_io.hpp"
@@ -109,8 +110,8 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& file, const std::stri
                        ": a checkpoint is resumed by the build that wrote it");
     if (c.config_hash != config_hash)
       throw InputError(name + ": written for a case whose hash is " + c.config_hash + ", this case's is " + config_hash +
-                       ": restart with the case, --sdel and --set of the run that wrote it (only run.end_time_s, "
-                       "run.output_interval_steps and run.checkpoint_interval_steps may change)");
+                       ": restart with the case, --sdel and --set of the run that wrote it (only " +
+                       restart_may_change_list() + " may change)");
     SolverCheckpoint& s = c.solver;
     for (const std::string& field : h5.children("particles"))
       s.particle_fields.emplace_back(field, h5.read_doubles("particles/" + field).values);

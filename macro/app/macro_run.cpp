@@ -156,14 +156,6 @@ void run_macro(const MacroRunArgs& args) {
   const fs::path checkpoint_file = args.out / "checkpoint.h5";
   std::optional<RunCheckpoint> resumed;
   if (args.restart) resumed = read_checkpoint(checkpoint_file, inputs.restart_hash);
-  fs::create_directories(args.out);
-  for (const char* stale : {"result.json", "diagnostic.json"}) fs::remove(args.out / stale);
-  if (!resumed) {
-    for (const char* stale : {"history.csv", "config.json", "checkpoint.h5"}) fs::remove(args.out / stale);
-  }
-  write_text_atomic(args.out / "config.json", inputs.record.dump(2) + "\n");
-  const Provenance provenance = Provenance::make("uhpc-macro", inputs.hash);
-
   ExplicitSolver solver = make_solver(settings, body, std::move(material.set));
   if (resumed) {
     try {
@@ -171,13 +163,26 @@ void run_macro(const MacroRunArgs& args) {
     } catch (const std::invalid_argument& e) {
       throw InputError(checkpoint_file.string() + ": does not fit this case: " + e.what());
     }
-    spdlog::info("restarting from {} at step {}, t = {:.6e} s", checkpoint_file.string(), solver.steps(), solver.time());
+    if (!(solver.time() < settings.run.end_time_s))
+      cfg.section("run").fail("end_time_s", fmt::format("the checkpoint is at t = {:.6e} s, at or past end_time_s = {:.6e} s: "
+                                                        "a restart carries a run on to a later end time",
+                                                        solver.time(), settings.run.end_time_s));
   }
   refuse_beyond_budget(cfg, settings.run, solver.dt());
+  // Every check has passed: only now are the previous run's outputs replaced.
+  fs::create_directories(args.out);
+  for (const char* stale : {"result.json", "diagnostic.json"}) fs::remove(args.out / stale);
+  if (!resumed) {
+    for (const char* stale : {"history.csv", "config.json", "checkpoint.h5"}) fs::remove(args.out / stale);
+  }
+  write_text_atomic(args.out / "config.json", inputs.record.dump(2) + "\n");
+  const Provenance provenance = Provenance::make("uhpc-macro", inputs.hash);
+  if (resumed)
+    spdlog::info("restarting from {} at step {}, t = {:.6e} s", checkpoint_file.string(), solver.steps(), solver.time());
   spdlog::info("{} particles, material '{}', sphere {} kg at {} m/s, first step {:.3e} s, end time {:.3e} s",
                solver.particles().n, material.model, settings.projectile.mass_kg, settings.projectile.velocity_m_s,
                solver.dt(), settings.run.end_time_s);
-  std::vector<RunWarning> warnings = warnings_before_run(settings, settings.solver.energy_error_limit);
+  std::vector<RunWarning> warnings = warnings_before_run(settings);
   for (const RunWarning& w : warnings) spdlog::warn("{}", w.message);
 
   std::optional<FieldOutput> field_output;
@@ -272,11 +277,12 @@ void run_macro(const MacroRunArgs& args) {
     warnings.push_back(std::move(w));
   }
   result["warnings"] = warnings_json(warnings);
-  write_text_atomic(args.out / "result.json", result.dump(2) + "\n");
   // A decided run is complete: its results replace the checkpoint. An undecided one keeps its last state
-  // as one, so that --restart with a later run.end_time_s carries it on instead of starting again.
+  // as one, so that --restart with a later run.end_time_s carries it on instead of starting again; it is
+  // written first, so that a result.json on disk always means a finished run.
+  if (!impact.decided()) write_checkpoint_now();
+  write_text_atomic(args.out / "result.json", result.dump(2) + "\n");
   if (impact.decided()) fs::remove(checkpoint_file);
-  else write_checkpoint_now();
   spdlog::info("{} steps ({} repeated) in {:.2f} s, {:.3g} particle-steps/s; sphere v_z {:.2f} m/s ({}); energy "
                "balance {:.2e}, momentum balance {:.2e}",
                solver.steps(), solver.step_repeats(), wall, result["particle_steps_per_s"].get<double>(),

@@ -46,15 +46,23 @@ RunInputs run_inputs(const Config& cfg, const std::string& case_file, const std:
   RunInputs r;
   r.record = {{"case_file", case_file}, {"overrides", overrides}, {"case", cfg.json()}, {"files", files},
               {"sdel", sdel}};
-  std::string file_hashes;
-  for (const auto& f : files) file_hashes += f.at("fnv1a64").get<std::string>();
+  std::string file_hashes, other_file_hashes;  // other: all but the case file, whose content is cfg's
+  for (const auto& f : files) {
+    file_hashes += f.at("fnv1a64").get<std::string>();
+    if (f.at("role") != "case") other_file_hashes += f.at("fnv1a64").get<std::string>();
+  }
   r.hash = fnv1a64_hex(cfg.hash() + file_hashes);
   nlohmann::json resumable = cfg.json();
-  if (resumable.contains("run"))
-    for (const char* key : kRestartMayChange) resumable["run"].erase(key);
-  r.restart_hash = fnv1a64_hex(fnv1a64_hex(resumable.dump()) + file_hashes);
+  for (const char* key : kRestartMayChange) resumable.at("run").erase(key);
+  r.restart_hash = fnv1a64_hex(fnv1a64_hex(resumable.dump()) + other_file_hashes);
   r.record["hash"] = r.hash;
   return r;
+}
+
+std::string restart_may_change_list() {
+  std::string list;
+  for (const char* key : kRestartMayChange) list += (list.empty() ? "run." : ", run.") + std::string(key);
+  return list;
 }
 
 nlohmann::json inputs_summary(const RunInputs& inputs) {

@@ -19,9 +19,13 @@ struct RunInputs {
   std::string restart_hash;  // the same without the keys a restart may change (kRestartMayChange)
 };
 
-// The keys of `run` a restart may change: when the run ends and how often it writes; nothing that the
-// state it resumes depends on.
-inline constexpr const char* kRestartMayChange[] = {"end_time_s", "output_interval_steps", "checkpoint_interval_steps"};
+// The keys of `run` a restart may change: when the run ends, its step budget and how often it writes;
+// nothing that the state it resumes depends on. Changed in the case file or by --set alike.
+inline constexpr const char* kRestartMayChange[] = {"end_time_s", "max_steps", "output_interval_steps",
+                                                    "checkpoint_interval_steps"};
+
+// "run.end_time_s, run.max_steps, ..." for messages.
+std::string restart_may_change_list();
 
 // `case_file` and `overrides` as given; `sdel_path` the --sdel argument ("" without).
 RunInputs run_inputs(const Config& cfg, const std::string& case_file, const std::vector<std::string>& overrides,

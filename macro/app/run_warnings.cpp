@@ -6,7 +6,7 @@
 
 namespace uhpc::macro {
 
-std::vector<RunWarning> warnings_before_run(const CaseSettings& settings, double energy_error_limit) {
+std::vector<RunWarning> warnings_before_run(const CaseSettings& settings) {
   std::vector<RunWarning> w;
   const TargetSettings& t = settings.target;
   const double h = t.shape == TargetSettings::Shape::Box ? t.box_spacing_m
@@ -16,7 +16,7 @@ std::vector<RunWarning> warnings_before_run(const CaseSettings& settings, double
     w.push_back({"thin_target", fmt::format("the target is {:.1f} particles thick at the impact point ({:.2f} mm at "
                                             "{:.2f} mm spacing), fewer than {:g}: its penetration is not resolved",
                                             across, t.thickness_m() * 1e3, h * 1e3, kMinParticlesThroughThickness)});
-  if (energy_error_limit == 0.0)
+  if (settings.solver.energy_error_limit == 0.0)
     w.push_back({"energy_check_off", "solver.energy_error_limit = 0: the energy balance is not checked, an unstable "
                                      "run goes on (read energy.balance_error in result.json)"});
   return w;
@@ -33,7 +33,7 @@ std::vector<RunWarning> warnings_after_run(const EnergyLedger& e) {
                              "lost kinetic energy, more than {:.0f} %: the result depends on the discretization more "
                              "than on the material",
                              100 * contact, 100 * stabilization, 100 * (contact + stabilization), 100 * kMaxNumericalShare)});
-  if (stabilization < 0.0)
+  if (stabilization < kNegativeStabilizationShare)
     w.push_back({"negative_stabilization",
                  fmt::format("the NSNI stabilization gave back {:.1f} % of the sphere's lost kinetic energy (negative "
                              "dissipation): the stabilization is not dissipative here",

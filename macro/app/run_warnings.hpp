@@ -16,6 +16,7 @@ namespace uhpc::macro {
 // The thresholds, stated once (macro/README.md, "Warnings").
 inline constexpr double kMinParticlesThroughThickness = 5.0;  // thickness / spacing at the impact point
 inline constexpr double kMaxNumericalShare = 0.5;  // contact + stabilization share of the sphere's lost energy
+inline constexpr double kNegativeStabilizationShare = -1e-3;  // below it, not round-off
 
 struct RunWarning {
   std::string code;     // e.g. "thin_target"
@@ -23,7 +24,7 @@ struct RunWarning {
 };
 
 // Known before the run: the target's resolution through its thickness, the energy check.
-std::vector<RunWarning> warnings_before_run(const CaseSettings& settings, double energy_error_limit);
+std::vector<RunWarning> warnings_before_run(const CaseSettings& settings);
 
 // Known at the end: where the sphere's lost energy went.
 std::vector<RunWarning> warnings_after_run(const EnergyLedger& ledger);

@@ -3,7 +3,8 @@
 known limit (237 m/s): the bracket must contain it to the stated width, each velocity must be run and
 listed once; a run that fails inside the bracket is recorded and bisected around (not rerun on resume),
 one at an end of the bracket stops it; too many failures report the bracket reached (exit 1); a resume
-reuses a run only if it was made from the same inputs (exit 2 otherwise)."""
+reuses a run only if it was made from the same inputs (exit 2 otherwise); a run killed without a
+diagnostic stops the bisection (exit 3); nothing perforating up to --max-velocity stops it (exit 1)."""
 import json
 import pathlib
 import subprocess
@@ -33,6 +34,8 @@ out.mkdir(parents=True, exist_ok=True)
 if v in {fail_at}:
     (out / "diagnostic.json").write_text("{{}}")
     sys.exit(1)
+if v in {kill_at}:
+    sys.exit(137)
 p = v >= {limit}
 (out / "result.json").write_text(json.dumps({{"outcome": "perforated" if p else "embedded", "perforated": p,
     "residual_velocity_m_s": 0.2 * v if p else None, "final_velocity_m_s": 0.2 * v if p else 0.0,
@@ -40,9 +43,9 @@ p = v >= {limit}
 """
 
 
-def bisect(tmp, low, high, fail_at=(), end_time="1e-3"):
+def bisect(tmp, low, high, fail_at=(), end_time="1e-3", kill_at=(), limit=237):
     macro = pathlib.Path(tmp) / "macro.py"
-    macro.write_text(STAND_IN.format(python=sys.executable, limit=237, fail_at=list(fail_at)))
+    macro.write_text(STAND_IN.format(python=sys.executable, limit=limit, fail_at=list(fail_at), kill_at=list(kill_at)))
     macro.chmod(0o755)
     out = pathlib.Path(tmp) / "bl"
     done = subprocess.run([sys.executable, str(SCRIPT), "--macro", str(macro), "--config", "case.json",
@@ -95,7 +98,19 @@ def main():
         check(done.returncode == 1 and not s["width_reached"] and s["bracket_width_m_s"] == 100, f"{done.returncode} {s}")
     with tempfile.TemporaryDirectory() as tmp:  # a failed end of the bracket stops the bisection, named
         done, out, calls = bisect(tmp, 200, 300, fail_at=[200])
-        check(done.returncode != 0 and "200 m/s failed at an end" in done.stderr, done.stderr)
+        check(done.returncode == 1 and "200 m/s failed at an end" in done.stderr, done.stderr)
+    with tempfile.TemporaryDirectory() as tmp:  # a diagnostic without config.json (an older run): rerun
+        (pathlib.Path(tmp) / "bl" / "v250").mkdir(parents=True)
+        (pathlib.Path(tmp) / "bl" / "v250" / "diagnostic.json").write_text("{}")
+        done, out, calls = bisect(tmp, 200, 300)
+        check(done.returncode == 0 and 250 in calls, f"{done.returncode} {calls} {done.stderr}")
+    with tempfile.TemporaryDirectory() as tmp:  # a run killed without a diagnostic: stop, exit 3
+        done, out, calls = bisect(tmp, 200, 300, kill_at=[250])
+        check(done.returncode == 3 and "no diagnostic" in done.stderr, f"{done.returncode} {done.stderr}")
+    with tempfile.TemporaryDirectory() as tmp:  # nothing perforates up to --max-velocity (3000): exit 1
+        done, out, calls = bisect(tmp, 200, 300, limit=10**6)
+        check(done.returncode == 1 and "nothing perforates up to" in done.stderr and max(calls) <= 3000,
+              f"{done.returncode} {max(calls)} {done.stderr}")
     print("ballistic_limit.py: bracket, widening, resume, reuse check and failures as documented")
 
 

@@ -201,16 +201,23 @@ TEST_F(MacroApp, InputsHashIsTheRunsConfigHashAndWritesNothing) {
   args.quiet = true;
   const auto hash_of = [](MacroRunArgs a) {
     a.inputs_hash = true;
-    a.out = "";
     testing::internal::CaptureStdout();
     run_macro(a);
     return testing::internal::GetCapturedStdout();
   };
   const std::string printed = hash_of(args);
-  EXPECT_FALSE(std::filesystem::exists(dir_ / "run"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "run"));  // --out given, nothing written there
   run_macro(args);
   const auto result = nlohmann::json::parse(test::read_file(dir_ / "run" / "result.json"));
   EXPECT_EQ(printed, result.at("provenance").at("config_hash").get<std::string>() + "\n");
+  // The block is 16 mm at 4 mm: the run says it is too thin to resolve a penetration, in the log and here.
+  ASSERT_EQ(result.at("warnings").size(), 1u);
+  EXPECT_EQ(result.at("warnings")[0].at("code"), "thin_target");
+  // The program: --out is not needed with --inputs-hash, and is without it.
+  const std::string program = std::string(UHPC_BINARY_DIR) + "/macro/uhpc-macro --config " + UHPC_DATA_DIR +
+                              "/macro_elastic_block.json --set run.end_time_s=1e-7";
+  EXPECT_EQ(WEXITSTATUS(std::system((program + " --inputs-hash > /dev/null").c_str())), 0);
+  EXPECT_EQ(WEXITSTATUS(std::system((program + " 2> /dev/null").c_str())), 2);
   MacroRunArgs other = args;
   other.overrides.push_back("projectile.velocity_m_s=101");
   EXPECT_NE(hash_of(other), printed);

@@ -184,14 +184,33 @@ TEST_F(MacroCheckpoint, AnUndecidedRunIsExtendedByARestartWithALaterEndTime) {
     b.erase(clock);
   }
   EXPECT_EQ(a, b);
-  EXPECT_EQ(fs::exists(extended.out / "checkpoint.h5"), outcome(extended.out) == "undecided");
+  ASSERT_EQ(outcome(extended.out), "undecided");  // at 60 us: the checkpoint is kept again
+  EXPECT_TRUE(fs::exists(extended.out / "checkpoint.h5"));
+  // An end time the checkpoint has reached is refused, and the outputs are left as they were.
+  const std::string result_before = test::read_file(extended.out / "result.json");
+  extended.overrides.back() = "run.end_time_s=5e-5";
+  const std::string reached = test::error_of<InputError>([&] { run_macro(extended); });
+  EXPECT_NE(reached.find("at or past end_time_s"), std::string::npos) << reached;
+  EXPECT_EQ(test::read_file(extended.out / "result.json"), result_before);
   // Anything else changed is another case.
+  extended.overrides.back() = "run.end_time_s=9e-5";
   extended.overrides.push_back("projectile.velocity_m_s=800");
-  extended.restart = true;
-  MacroRunArgs fresh = args_to("extended", "3e-5");
-  run_macro(fresh);
   const std::string other = test::error_of<InputError>([&] { run_macro(extended); });
   EXPECT_NE(other.find("written for a case whose hash is"), std::string::npos) << other;
+  EXPECT_EQ(test::read_file(extended.out / "result.json"), result_before);
+}
+
+// A run whose outcome is decided removes its checkpoint: the elastic block's rebound at 45 us, with a
+// checkpoint every 10 steps on the way.
+TEST_F(MacroCheckpoint, ADecidedRunRemovesItsCheckpoint) {
+  MacroRunArgs a;
+  a.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  a.overrides = {"run.checkpoint_interval_steps=10"};
+  a.out = dir_ / "block";
+  a.quiet = true;
+  run_macro(a);
+  EXPECT_EQ(nlohmann::json::parse(test::read_file(a.out / "result.json")).at("outcome"), "rebounded");
+  EXPECT_FALSE(fs::exists(a.out / "checkpoint.h5"));
 }
 
 // A checkpoint of another case or another build is refused with one line naming the file.
