@@ -46,15 +46,16 @@ RunInputs run_inputs(const Config& cfg, const std::string& case_file, const std:
   RunInputs r;
   r.record = {{"case_file", case_file}, {"overrides", overrides}, {"case", cfg.json()}, {"files", files},
               {"sdel", sdel}};
-  std::string file_hashes, other_file_hashes;  // other: all but the case file, whose content is cfg's
-  for (const auto& f : files) {
-    file_hashes += f.at("fnv1a64").get<std::string>();
-    if (f.at("role") != "case") other_file_hashes += f.at("fnv1a64").get<std::string>();
-  }
-  r.hash = fnv1a64_hex(cfg.hash() + file_hashes);
+  // The case enters through its effective document (cfg, after --set), not its bytes: a note or the
+  // layout of the file does not make another run, a value does, in the file or by --set alike. The other
+  // files (constants, SDEL) enter through their bytes.
+  std::string data_hashes;
+  for (const auto& f : files)
+    if (f.at("role") != "case") data_hashes += f.at("fnv1a64").get<std::string>();
+  r.hash = fnv1a64_hex(cfg.hash() + data_hashes);
   nlohmann::json resumable = cfg.json();
   for (const char* key : kRestartMayChange) resumable.at("run").erase(key);
-  r.restart_hash = fnv1a64_hex(fnv1a64_hex(resumable.dump()) + other_file_hashes);
+  r.restart_hash = fnv1a64_hex(fnv1a64_hex(resumable.dump()) + data_hashes);
   r.record["hash"] = r.hash;
   return r;
 }

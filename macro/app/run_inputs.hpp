@@ -15,7 +15,7 @@ namespace uhpc::macro {
 
 struct RunInputs {
   nlohmann::json record;     // config.json
-  std::string hash;          // fnv1a64 of the case document and of every file read
+  std::string hash;          // fnv1a64 of the effective case document and of every other file read
   std::string restart_hash;  // the same without the keys a restart may change (kRestartMayChange)
 };
 
