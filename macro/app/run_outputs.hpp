@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "panel_damage.hpp"
 #include "solver/explicit_solver.hpp"
 #include "uhpc/xdmf.hpp"
 
@@ -112,6 +113,14 @@ struct BalanceTracker {
 // (minus the external work) and the balance error; the parts add up to the loss exactly.
 // The target starts at rest, so the initial kinetic energy is the sphere's.
 nlohmann::json energy_partition_json(const EnergyLedger& ledger);
+
+// The panel after the shot (result.json `panel`): crater and scab diameters (null when the law has no
+// damage), the debris of either face and the plug, with the thresholds they were measured with.
+nlohmann::json panel_json(const PanelDamage& panel);
+
+// The larger of each particle's damages (the law's damage_tension and damage_compression fields); empty
+// for a law without damage.
+std::vector<double> larger_damage(const MaterialSet& set);
 
 // The diagnostic of a failed run (diagnostic.json).
 nlohmann::json diagnostic_json(const ExplicitSolver& solver, const FailureReport& failure);

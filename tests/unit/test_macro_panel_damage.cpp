@@ -1,0 +1,94 @@
+// The panel after a shot (macro/app/panel_damage.hpp) on a block of 7 x 7 x 4 particles (1 mm) whose
+// damage, positions and velocities are set by hand: the crater and scab diameters from the failed
+// particles of each face layer, the debris of either face by mass and momentum, and the plug.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bodies/generators.hpp"
+#include "panel_damage.hpp"
+#include "solver/particles.hpp"
+
+namespace uhpc::macro {
+namespace {
+
+constexpr double kH = 0.001, kT = 0.004;
+
+struct Block {
+  ParticleBody body;
+  Particles p;
+  std::vector<double> damage;
+};
+
+Block block() {
+  ParticleBody body = box_body(0.007, 0.007, kT, kH);
+  for (std::size_t i = 0; i < body.size(); ++i) {  // x, y centred on the axis, as the cases place a box
+    body.position[3 * i] -= 0.0035;
+    body.position[3 * i + 1] -= 0.0035;
+  }
+  Particles p = Particles::from_body(body, 2500.0, 2.5);
+  return {body, p, std::vector<double>(p.n, 0.0)};
+}
+
+// The particle whose reference centre is nearest (x, y, z).
+std::size_t at(const Block& b, double x, double y, double z) {
+  std::size_t best = 0;
+  double d_best = 1e9;
+  for (std::size_t i = 0; i < b.p.n; ++i) {
+    const double d = std::hypot(b.body.position[3 * i] - x, b.body.position[3 * i + 1] - y, b.body.position[3 * i + 2] - z);
+    if (d < d_best) best = i, d_best = d;
+  }
+  return best;
+}
+
+TEST(MacroPanelDamage, CraterAndScabAreTheFailedParticlesOfEachFaceLayer) {
+  Block b = block();
+  PanelDamage none = panel_damage(b.p, b.body.position, b.damage, kT, 0.0, 100.0);
+  EXPECT_EQ(none.front_crater_diameter_m, 0.0);
+  EXPECT_EQ(none.rear_scab_diameter_m, 0.0);
+  // Entry layer (z = 0.5 mm): failed at r = 0 and r = 2 mm; a failed particle of the second layer at
+  // r = 3 mm does not count; one at 0.98 (< kFailedDamage) at r = 3 mm neither. Exit layer: r = 1 mm.
+  b.damage[at(b, 0, 0, 0.0005)] = 1.0;
+  b.damage[at(b, 0.002, 0, 0.0005)] = 0.995;
+  b.damage[at(b, 0.003, 0, 0.0015)] = 1.0;
+  b.damage[at(b, -0.003, 0, 0.0005)] = 0.98;
+  b.damage[at(b, 0, 0.001, 0.0035)] = 1.0;
+  const PanelDamage d = panel_damage(b.p, b.body.position, b.damage, kT, 0.0, 100.0);
+  EXPECT_NEAR(d.front_crater_diameter_m, 0.004, 1e-12);
+  EXPECT_NEAR(d.rear_scab_diameter_m, 0.002, 1e-12);
+  // Measured from the impact point: 1 mm off the axis along x, the entry layer's farthest is 2 mm away.
+  EXPECT_NEAR(panel_damage(b.p, b.body.position, b.damage, kT, -0.001, 100.0).front_crater_diameter_m, 0.006, 1e-12);
+  // A law without damage: not measured.
+  EXPECT_LT(panel_damage(b.p, b.body.position, {}, kT, 0.0, 100.0).front_crater_diameter_m, 0.0);
+}
+
+TEST(MacroPanelDamage, DebrisIsWhatLeftEitherFaceAndThePlugWhatMovesWithTheSphere) {
+  Block b = block();
+  const std::size_t front = at(b, 0, 0, 0.0005), rear1 = at(b, 0, 0, 0.0035), rear2 = at(b, 0.001, 0, 0.0035),
+                    back = at(b, 0.002, 0, 0.0035);
+  b.p.x[3 * front + 2] = -0.001;  // thrown back out of the entry face
+  b.p.v[3 * front + 2] = -30.0;
+  b.p.x[3 * rear1 + 2] = b.p.x[3 * rear2 + 2] = 0.006;  // out of the exit face, moving on
+  b.p.v[3 * rear1 + 2] = 80.0;
+  b.p.v[3 * rear2 + 2] = 20.0;
+  b.p.x[3 * back + 2] = 0.006;  // out of the exit face, but moving back towards it: not debris
+  b.p.v[3 * back + 2] = -1.0;
+  const double m = b.p.mass[front];
+  const PanelDamage d = panel_damage(b.p, b.body.position, b.damage, kT, 0.0, 100.0);
+  EXPECT_EQ(d.front_ejecta.particles, 1);
+  EXPECT_NEAR(d.front_ejecta.mass_kg, m, 1e-15);
+  EXPECT_NEAR(d.front_ejecta.velocity_m_s, -30.0, 1e-12);
+  EXPECT_EQ(d.rear_ejecta.particles, 2);
+  EXPECT_NEAR(d.rear_ejecta.mass_kg, b.p.mass[rear1] + b.p.mass[rear2], 1e-15);
+  EXPECT_NEAR(d.rear_ejecta.velocity_m_s,
+              (80.0 * b.p.mass[rear1] + 20.0 * b.p.mass[rear2]) / (b.p.mass[rear1] + b.p.mass[rear2]), 1e-9);
+  // The sphere at 100 m/s: the plug is what moves at 50 m/s or faster.
+  EXPECT_EQ(d.plug.particles, 1);
+  EXPECT_NEAR(d.plug.velocity_m_s, 80.0, 1e-12);
+  // A sphere that did not go on forward leaves no plug.
+  EXPECT_EQ(panel_damage(b.p, b.body.position, b.damage, kT, 0.0, -5.0).plug.particles, 0);
+}
+
+}  // namespace
+}  // namespace uhpc::macro
