@@ -110,7 +110,7 @@ def provenance_rows(root):
                      "commit": prov.get("git_commit"), "config_hash": prov.get("config_hash"),
                      "date": prov.get("date_utc"), "files": files,
                      "overrides": " ".join(inputs.get("overrides", [])), "outcome": r.get("outcome"),
-                     "residual": r.get("residual_velocity_m_s")})
+                     "residual": r.get("residual_velocity_m_s"), "warnings": r.get("warnings", [])})
     return rows
 
 
@@ -181,6 +181,17 @@ def main():
         p.include(root / "thickness" / "thickness.md")
     else:
         p.not_run("the thickness study", "make -C pipelines thickness-study")
+
+    p.add("", "## Warnings of the runs", "",
+          "What each run said about its own numbers (result.json `warnings`, macro/README.md): a target too few "
+          "particles thick, contact and stabilization taking most of the sphere's energy, the energy check off.")
+    warned = [(r["run"], w) for r in provenance_rows(root) for w in r["warnings"]]
+    if warned:
+        p.add("", "| run | warning | what it says |", "|---|---|---|")
+        for run, w in warned:
+            p.add(f"| {run} | {w.get('code')} | {w.get('message')} |")
+    else:
+        p.add("", "No run under the folder warned.")
 
     p.add("", "## Provenance of the runs", "",
           "Every uhpc-macro run under the folder (its result.json): the program, version and commit that made it, "

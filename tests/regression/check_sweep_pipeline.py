@@ -128,6 +128,10 @@ def main():
 
     # The report page.
     page = (out / "report" / "report.md").read_text()
+    # The coarse disc's shots take more than half of the sphere's energy in contact and stabilization.
+    warned = [r for r in (out / "sweep").rglob("result.json") if json.loads(r.read_text()).get("warnings")]
+    check(len(warned) > 0 and "## Warnings of the runs" in page and "| numerical_dissipation |" in page,
+          f"the report lists the runs' warnings ({len(warned)} runs warned)")
     import re
     links = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", page)
     check(len(links) >= 2, f"the page shows figures ({len(links)})")
