@@ -272,9 +272,8 @@ void run_macro(const MacroRunArgs& args) {
   history.save(args.out / "history.csv");
   nlohmann::json result = result_json(solver, impact, balance, material.model, wall, provenance, fields.steps_written());
   result["inputs"] = inputs_summary(inputs);
-  result["panel"] = panel_json(panel_damage(solver.particles(), body.position, larger_damage(solver.material()),
-                                            settings.target.thickness_m(), settings.projectile.offset_m,
-                                            solver.sphere().v[2]));
+  result["panel"] = panel_json(panel_damage(solver.particles(), body.position, settings.target.thickness_m(),
+                                            settings.projectile.offset_m, solver.sphere().v[2]));
   for (RunWarning& w : warnings_after_run(solver.ledger())) {
     spdlog::warn("{}", w.message);
     warnings.push_back(std::move(w));

@@ -2,15 +2,17 @@
 // What a test engineer measures on the panel after a shot: the front crater and the rear scab, and the
 // debris thrown out of either face, with the plug that leaves with the sphere (macro/README.md,
 // result.json's `panel`). Read from the particles' reference positions (which face layer a particle
-// belongs to, how far from the impact point it sat), their damage and their current state.
+// belongs to, how far from the impact point it sat) and their current state. The crater is where the
+// material has left its place, not where it is damaged: the tensile damage of the shipped model reaches
+// 1 in a third of the face layer out to the rim (bending cracks), the material stays.
 #include <vector>
 
 #include "solver/particles.hpp"
 
 namespace uhpc::macro {
 
-// A particle counts as failed when its larger damage (d+ or d-) reaches this.
-inline constexpr double kFailedDamage = 0.99;
+// A particle has left its place when it has moved more than this share of its spacing.
+inline constexpr double kMovedShare = 0.5;
 // A particle past the exit face belongs to the plug when it moves along the normal at least this share
 // of the sphere's own speed: it leaves with the sphere.
 inline constexpr double kPlugSpeedShare = 0.5;
@@ -23,18 +25,18 @@ struct Debris {
 
 struct PanelDamage {
   // 2 x the largest distance from the impact point (in the face's plane, in the reference configuration)
-  // of a failed particle of the face's first layer (reference centre within its own spacing of the face);
-  // 0 when none failed there. Negative when the law has no damage (not measured).
-  double front_crater_diameter_m = -1.0;
-  double rear_scab_diameter_m = -1.0;
+  // of a particle of the face's first layer (reference centre within its own spacing of the face) that
+  // has left its place; 0 when none has.
+  double front_crater_diameter_m = 0.0;
+  double rear_scab_diameter_m = 0.0;
   Debris front_ejecta;  // centre before the entry face (z < 0), moving back (v_z < 0)
   Debris rear_ejecta;   // centre past the exit face (z > thickness), moving on (v_z > 0)
   Debris plug;          // of the rear ejecta, those at kPlugSpeedShare of the sphere's v_z or faster
 };
 
-// `reference` the particles' reference positions (3n), `damage` their larger damage (n, empty: the law
-// has none), the entry face at z = 0 and the exit face at z = thickness, the impact point at (impact_x, 0).
-PanelDamage panel_damage(const Particles& p, const std::vector<double>& reference, const std::vector<double>& damage,
-                         double thickness_m, double impact_x_m, double sphere_vz_m_s);
+// `reference` the particles' reference positions (3n), the entry face at z = 0 and the exit face at
+// z = thickness, the impact point at (impact_x, 0).
+PanelDamage panel_damage(const Particles& p, const std::vector<double>& reference, double thickness_m,
+                         double impact_x_m, double sphere_vz_m_s);
 
 }  // namespace uhpc::macro

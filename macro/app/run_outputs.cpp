@@ -165,33 +165,13 @@ nlohmann::json panel_json(const PanelDamage& panel) {
   const auto debris = [](const Debris& d) {
     return nlohmann::json{{"mass_kg", d.mass_kg}, {"velocity_m_s", d.velocity_m_s}, {"particles", d.particles}};
   };
-  const auto diameter = [](double d) { return d < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(d); };
-  return {{"failed_damage", kFailedDamage},
-          {"front_crater_diameter_m", diameter(panel.front_crater_diameter_m)},
-          {"rear_scab_diameter_m", diameter(panel.rear_scab_diameter_m)},
+  return {{"moved_share", kMovedShare},
+          {"front_crater_diameter_m", panel.front_crater_diameter_m},
+          {"rear_scab_diameter_m", panel.rear_scab_diameter_m},
           {"front_ejecta", debris(panel.front_ejecta)},
           {"rear_ejecta", debris(panel.rear_ejecta)},
           {"plug_speed_share", kPlugSpeedShare},
           {"plug", debris(panel.plug)}};
-}
-
-std::vector<double> larger_damage(const MaterialSet& set) {
-  const std::vector<std::string> names = law_output_fields(set);
-  const auto column = [&](const char* name) {
-    return static_cast<std::ptrdiff_t>(std::find(names.begin(), names.end(), name) - names.begin());
-  };
-  const std::ptrdiff_t k = static_cast<std::ptrdiff_t>(names.size()), t = column("damage_tension"),
-                       c = column("damage_compression");
-  if (t == k && c == k) return {};
-  std::vector<double> values;
-  law_output_values(set, values);
-  const std::size_t n = k > 0 ? values.size() / static_cast<std::size_t>(k) : 0;
-  std::vector<double> d(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (t < k) d[i] = std::max(d[i], values[i * k + t]);
-    if (c < k) d[i] = std::max(d[i], values[i * k + c]);
-  }
-  return d;
 }
 
 nlohmann::json diagnostic_json(const ExplicitSolver& s, const FailureReport& f) {

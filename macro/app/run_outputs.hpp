@@ -114,13 +114,9 @@ struct BalanceTracker {
 // The target starts at rest, so the initial kinetic energy is the sphere's.
 nlohmann::json energy_partition_json(const EnergyLedger& ledger);
 
-// The panel after the shot (result.json `panel`): crater and scab diameters (null when the law has no
-// damage), the debris of either face and the plug, with the thresholds they were measured with.
+// The panel after the shot (result.json `panel`): crater and scab diameters, the debris of either face
+// and the plug, with the thresholds they were measured with.
 nlohmann::json panel_json(const PanelDamage& panel);
-
-// The larger of each particle's damages (the law's damage_tension and damage_compression fields); empty
-// for a law without damage.
-std::vector<double> larger_damage(const MaterialSet& set);
 
 // The diagnostic of a failed run (diagnostic.json).
 nlohmann::json diagnostic_json(const ExplicitSolver& solver, const FailureReport& failure);

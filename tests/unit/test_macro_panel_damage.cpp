@@ -1,6 +1,6 @@
 // The panel after a shot (macro/app/panel_damage.hpp) on a block of 7 x 7 x 4 particles (1 mm) whose
-// damage, positions and velocities are set by hand: the crater and scab diameters from the failed
-// particles of each face layer, the debris of either face by mass and momentum, and the plug.
+// positions and velocities are set by hand: the crater and scab diameters from the particles of each
+// face layer that left their place, the debris of either face by mass and momentum, and the plug.
 #include <cmath>
 #include <vector>
 
@@ -18,7 +18,6 @@ constexpr double kH = 0.001, kT = 0.004;
 struct Block {
   ParticleBody body;
   Particles p;
-  std::vector<double> damage;
 };
 
 Block block() {
@@ -28,7 +27,7 @@ Block block() {
     body.position[3 * i + 1] -= 0.0035;
   }
   Particles p = Particles::from_body(body, 2500.0, 2.5);
-  return {body, p, std::vector<double>(p.n, 0.0)};
+  return {body, p};
 }
 
 // The particle whose reference centre is nearest (x, y, z).
@@ -42,25 +41,26 @@ std::size_t at(const Block& b, double x, double y, double z) {
   return best;
 }
 
-TEST(MacroPanelDamage, CraterAndScabAreTheFailedParticlesOfEachFaceLayer) {
+// Moves particle i by dz along the normal.
+void move(Block& b, std::size_t i, double dz) { b.p.x[3 * i + 2] += dz; }
+
+TEST(MacroPanelDamage, CraterAndScabAreWhereTheFaceLayersLeftTheirPlace) {
   Block b = block();
-  PanelDamage none = panel_damage(b.p, b.body.position, b.damage, kT, 0.0, 100.0);
+  PanelDamage none = panel_damage(b.p, b.body.position, kT, 0.0, 100.0);
   EXPECT_EQ(none.front_crater_diameter_m, 0.0);
   EXPECT_EQ(none.rear_scab_diameter_m, 0.0);
-  // Entry layer (z = 0.5 mm): failed at r = 0 and r = 2 mm; a failed particle of the second layer at
-  // r = 3 mm does not count; one at 0.98 (< kFailedDamage) at r = 3 mm neither. Exit layer: r = 1 mm.
-  b.damage[at(b, 0, 0, 0.0005)] = 1.0;
-  b.damage[at(b, 0.002, 0, 0.0005)] = 0.995;
-  b.damage[at(b, 0.003, 0, 0.0015)] = 1.0;
-  b.damage[at(b, -0.003, 0, 0.0005)] = 0.98;
-  b.damage[at(b, 0, 0.001, 0.0035)] = 1.0;
-  const PanelDamage d = panel_damage(b.p, b.body.position, b.damage, kT, 0.0, 100.0);
+  // Entry layer (z = 0.5 mm): moved by 0.6 h at r = 0 and r = 2 mm; a particle of the second layer moved at
+  // r = 3 mm does not count; one moved by 0.4 h (< kMovedShare) at r = 3 mm neither. Exit layer: r = 1 mm.
+  move(b, at(b, 0, 0, 0.0005), 0.0006);
+  move(b, at(b, 0.002, 0, 0.0005), -0.0006);
+  move(b, at(b, 0.003, 0, 0.0015), 0.002);
+  move(b, at(b, -0.003, 0, 0.0005), 0.0004);
+  move(b, at(b, 0, 0.001, 0.0035), 0.0006);
+  const PanelDamage d = panel_damage(b.p, b.body.position, kT, 0.0, 100.0);
   EXPECT_NEAR(d.front_crater_diameter_m, 0.004, 1e-12);
   EXPECT_NEAR(d.rear_scab_diameter_m, 0.002, 1e-12);
   // Measured from the impact point: 1 mm off the axis along x, the entry layer's farthest is 2 mm away.
-  EXPECT_NEAR(panel_damage(b.p, b.body.position, b.damage, kT, -0.001, 100.0).front_crater_diameter_m, 0.006, 1e-12);
-  // A law without damage: not measured.
-  EXPECT_LT(panel_damage(b.p, b.body.position, {}, kT, 0.0, 100.0).front_crater_diameter_m, 0.0);
+  EXPECT_NEAR(panel_damage(b.p, b.body.position, kT, -0.001, 100.0).front_crater_diameter_m, 0.006, 1e-12);
 }
 
 TEST(MacroPanelDamage, DebrisIsWhatLeftEitherFaceAndThePlugWhatMovesWithTheSphere) {
@@ -75,7 +75,7 @@ TEST(MacroPanelDamage, DebrisIsWhatLeftEitherFaceAndThePlugWhatMovesWithTheSpher
   b.p.x[3 * back + 2] = 0.006;  // out of the exit face, but moving back towards it: not debris
   b.p.v[3 * back + 2] = -1.0;
   const double m = b.p.mass[front];
-  const PanelDamage d = panel_damage(b.p, b.body.position, b.damage, kT, 0.0, 100.0);
+  const PanelDamage d = panel_damage(b.p, b.body.position, kT, 0.0, 100.0);
   EXPECT_EQ(d.front_ejecta.particles, 1);
   EXPECT_NEAR(d.front_ejecta.mass_kg, m, 1e-15);
   EXPECT_NEAR(d.front_ejecta.velocity_m_s, -30.0, 1e-12);
@@ -87,7 +87,7 @@ TEST(MacroPanelDamage, DebrisIsWhatLeftEitherFaceAndThePlugWhatMovesWithTheSpher
   EXPECT_EQ(d.plug.particles, 1);
   EXPECT_NEAR(d.plug.velocity_m_s, 80.0, 1e-12);
   // A sphere that did not go on forward leaves no plug.
-  EXPECT_EQ(panel_damage(b.p, b.body.position, b.damage, kT, 0.0, -5.0).plug.particles, 0);
+  EXPECT_EQ(panel_damage(b.p, b.body.position, kT, 0.0, -5.0).plug.particles, 0);
 }
 
 }  // namespace
