@@ -30,7 +30,10 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         scratch = pathlib.Path(tmp)
         shutil.copy(src / "data" / "macro_disc_afc_coarse.json", scratch / "mycase.json")
-        env = dict(os.environ, PWD=str(scratch))
+        # As from a shell in the scratch directory, whatever started the test (ctest under `make test`
+        # hands down the outer make's MAKEFLAGS and MAKELEVEL).
+        env = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL", "UHPC_STARTED_IN")}
+        env["PWD"] = str(scratch)
         for target in TARGETS + OWN_CASE:
             cmd = ["make", "-n", "-C", str(src / "pipelines"), "--no-print-directory", "-o", "macro-tools",
                    target, "SHOT_CASE=mycase.json", "SDEL=data/sdel_paper.json", "OUT=rel_out", "BUILD=rel_build",
