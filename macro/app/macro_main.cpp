@@ -1,6 +1,6 @@
 // uhpc-macro: one 3D penetration run (docs/architecture.md section 2).
 //
-//   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q] [--restart]
+//   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q] [--restart | --reuse]
 //   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --inputs-hash
 //
 // Writes DIR/result.json, DIR/history.csv and DIR/fields.h5 + DIR/fields.xdmf (ParaView); on a
@@ -30,6 +30,9 @@ int main(int argc, char** argv) {
   app.add_flag("--inputs-hash", args.inputs_hash,
                "print the hash of this run's inputs (the case with --set, the files it reads: result.json's "
                "provenance.config_hash) and exit, writing nothing");
+  app.add_flag("--reuse", args.reuse,
+               "keep a finished run already in OUT when its result.json was made from these inputs (the same "
+               "provenance.config_hash); exit 2 when it was made from other inputs");
   uhpc::add_set_option(app, args.overrides);
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);

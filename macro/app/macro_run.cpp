@@ -2,6 +2,7 @@
 
 
 #include <chrono>
+#include <fstream>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -20,6 +21,7 @@
 #include "uhpc/atomic_file.hpp"
 #include "uhpc/config.hpp"
 #include "uhpc/errors.hpp"
+#include "uhpc/parallel.hpp"
 #include "uhpc/progress.hpp"
 #include "uhpc/provenance.hpp"
 #include "uhpc/resources.hpp"
@@ -133,6 +135,28 @@ void refuse_beyond_size_budget(const Config& cfg, const CaseSettings& settings) 
                                      n, n * kBytesPerParticle / (1u << 30), settings.run.max_particles));
 }
 
+// --reuse: true when `result` holds a finished run of the inputs whose hash is `hash`; false when there is
+// none (the run goes ahead); an InputError when it holds a run of other inputs (a make rule would
+// otherwise take an answer made with another end time, SDEL or --set for this one).
+bool reuse_finished_run(const fs::path& result, const std::string& hash) {
+  if (!fs::exists(result)) return false;
+  std::ifstream in(result, std::ios::binary);
+  std::string recorded;
+  try {
+    recorded = nlohmann::json::parse(in).at("provenance").at("config_hash").get<std::string>();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(result.string() + ": not a run's result (provenance.config_hash unreadable: " + e.what() +
+                     "): delete its directory to run it again");
+  }
+  if (recorded != hash)
+    throw InputError(fmt::format("{}: made from other inputs (config_hash {}, these inputs {}): delete its directory "
+                                 "or use another output directory (an undecided run given only a later "
+                                 "run.end_time_s goes on with --restart)",
+                                 result.string(), recorded, hash));
+  spdlog::info("{}: a finished run of these inputs, kept", result.string());
+  return true;
+}
+
 }  // namespace
 
 void run_macro(const MacroRunArgs& args) {
@@ -153,6 +177,7 @@ void run_macro(const MacroRunArgs& args) {
     std::cout << inputs.hash << std::endl;
     return;
   }
+  if (args.reuse && reuse_finished_run(args.out / "result.json", inputs.hash)) return;
   const fs::path checkpoint_file = args.out / "checkpoint.h5";
   std::optional<RunCheckpoint> resumed;
   if (args.restart) resumed = read_checkpoint(checkpoint_file, inputs.restart_hash);
@@ -183,6 +208,10 @@ void run_macro(const MacroRunArgs& args) {
                solver.particles().n, material.model, settings.projectile.mass_kg, settings.projectile.velocity_m_s,
                solver.dt(), settings.run.end_time_s);
   std::vector<RunWarning> warnings = warnings_before_run(settings);
+  const WallTimeEstimate estimate =
+      estimate_wall_time(solver.particles().n, settings.run.end_time_s - solver.time(), solver.dt(), max_threads());
+  spdlog::info("{}", estimate.message);
+  if (estimate.seconds > kLongRunSeconds) warnings.push_back({"long_run", estimate.message});
   for (const RunWarning& w : warnings) spdlog::warn("{}", w.message);
 
   std::optional<FieldOutput> field_output;

@@ -21,6 +21,9 @@ struct MacroRunArgs {
   bool restart = false;
   // Only print the hash of the inputs (what result.json's provenance.config_hash would be) and return.
   bool inputs_hash = false;
+  // A finished run already in out (its result.json) is kept when it was made from these inputs (the same
+  // provenance.config_hash) and refused (InputError) when it was not: the make rules reuse runs safely.
+  bool reuse = false;
 };
 
 void run_macro(const MacroRunArgs& args);

@@ -3,6 +3,7 @@
 // (a target too few particles thick, contact and stabilization taking most of the sphere's energy,
 // stabilization giving energy back, the energy check switched off). Each warning is logged and listed
 // in result.json's `warnings` with a code, so a study can filter on it; none of them stops a run.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,10 @@ namespace uhpc::macro {
 inline constexpr double kMinParticlesThroughThickness = 5.0;  // thickness / spacing at the impact point
 inline constexpr double kMaxNumericalShare = 0.5;  // contact + stabilization share of the sphere's lost energy
 inline constexpr double kNegativeStabilizationShare = -1e-3;  // below it, not round-off
+inline constexpr double kLongRunSeconds = 3600.0;  // an estimated wall time beyond it warns (long_run)
+// The AFC shot's measured throughput per thread (macro/README.md's benchmark of the disc, 3.6e5 on one
+// thread), the basis of the estimate below.
+inline constexpr double kParticleStepsPerThreadPerSecond = 3.6e5;
 
 struct RunWarning {
   std::string code;     // e.g. "thin_target"
@@ -28,6 +33,16 @@ std::vector<RunWarning> warnings_before_run(const CaseSettings& settings);
 
 // Known at the end: where the sphere's lost energy went.
 std::vector<RunWarning> warnings_after_run(const EnergyLedger& ledger);
+
+// The wall time a run will take, said before it starts (a 500 mm slab once ran 8 minutes with nothing
+// said up front; the progress line's ETA follows the real rate once the run is going): the steps left
+// at the first stable step times the particles, at kParticleStepsPerThreadPerSecond a thread. A floor
+// more than a bound: the step shrinks as the target is crushed, and two threads give less than twice one.
+struct WallTimeEstimate {
+  double seconds = 0.0;
+  std::string message;  // the estimate with what it is made of
+};
+WallTimeEstimate estimate_wall_time(std::size_t particles, double remaining_s, double first_step_s, int threads);
 
 nlohmann::json warnings_json(const std::vector<RunWarning>& warnings);
 

@@ -226,6 +226,35 @@ TEST_F(MacroApp, InputsHashIsTheRunsConfigHashAndWritesNothing) {
 // A run its first stable step cannot finish within run.max_steps is refused before it starts (exit 2,
 // the estimate in the message): a density of 1e-300 gave a step of exactly 0 and a run that never
 // advanced while history.csv grew; a bulk modulus of 1e300 or a speed of 1e9 m/s, runs of days.
+// --reuse (the make rules' runs): a finished run of the same inputs is kept untouched, one of other
+// inputs is refused (exit 2) and left as it was, an unreadable result.json is refused too.
+TEST_F(MacroApp, ReuseKeepsARunOfTheSameInputsAndRefusesOneOfOthers) {
+  MacroRunArgs args;
+  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  args.overrides = {"run.end_time_s=1e-7"};
+  args.out = dir_ / "run";
+  args.quiet = true;
+  args.reuse = true;
+  run_macro(args);  // nothing there yet: it runs
+  const std::filesystem::path result = dir_ / "run" / "result.json";
+  const std::string first = test::read_file(result);
+  std::filesystem::remove(dir_ / "run" / "history.csv");  // a rerun would write it again
+  run_macro(args);
+  EXPECT_EQ(test::read_file(result), first);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "run" / "history.csv"));
+  MacroRunArgs other = args;
+  other.overrides.push_back("projectile.velocity_m_s=101");
+  const std::string refused = test::error_of<InputError>([&] { run_macro(other); });
+  EXPECT_NE(refused.find("made from other inputs"), std::string::npos) << refused;
+  EXPECT_EQ(test::read_file(result), first);
+  std::ofstream(result) << "{\"outcome\": ";
+  EXPECT_THROW(run_macro(args), InputError);
+  // Without --reuse the run is made again, whatever is there.
+  args.reuse = false;
+  run_macro(args);
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "run" / "history.csv"));
+}
+
 TEST_F(MacroApp, ARunBeyondTheStepBudgetIsRefusedBeforeItStarts) {
   const auto refused = [&](const std::vector<std::string>& overrides) {
     MacroRunArgs args;

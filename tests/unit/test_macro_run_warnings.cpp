@@ -62,5 +62,17 @@ TEST(MacroRunWarnings, NumericalSharesAboveTheThresholdOrNegativeStabilizationAr
   EXPECT_EQ(codes(warnings_after_run(e)), V{});
 }
 
+TEST(MacroRunWarnings, TheWallTimeEstimateIsParticleStepsOverTheThreadsThroughput) {
+  // The shipped disc: 79 957 particles, 1 ms at a first step of 1.9e-7 s: 5263 steps, 4.2e8
+  // particle-steps, 19.5 min on one thread at 3.6e5 a thread, half that on two.
+  const WallTimeEstimate one = estimate_wall_time(79957, 1e-3, 1.9e-7, 1);
+  EXPECT_NEAR(one.seconds, 79957.0 * (1e-3 / 1.9e-7) / kParticleStepsPerThreadPerSecond, 1e-9 * one.seconds);
+  EXPECT_NEAR(estimate_wall_time(79957, 1e-3, 1.9e-7, 2).seconds, 0.5 * one.seconds, 1e-9 * one.seconds);
+  EXPECT_NE(one.message.find("about 19 min"), std::string::npos) << one.message;
+  EXPECT_LT(one.seconds, kLongRunSeconds);
+  // Four times the particles for three times as long on one thread: beyond an hour, a long_run.
+  EXPECT_GT(estimate_wall_time(4 * 79957, 3e-3, 1.9e-7, 1).seconds, kLongRunSeconds);
+}
+
 }  // namespace
 }  // namespace uhpc::macro

@@ -15,6 +15,15 @@ inline int team_size() {
 #endif
 }
 
+// The threads a parallel region started here would get.
+inline int max_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
 inline int team_index() {
 #ifdef _OPENMP
   return omp_get_thread_num();
