@@ -29,6 +29,8 @@ PanelDamage panel_damage(const Particles& p, const std::vector<double>& referenc
       if (x0[2] < h) front = true, r_front = std::max(r_front, r);
       if (x0[2] > thickness_m - h) rear = true, r_rear = std::max(r_rear, r);
     }
+    if (x[2] < 0.0) out.front_crater_depth_m = std::max(out.front_crater_depth_m, x0[2] + 0.5 * h);
+    if (x[2] > thickness_m) out.rear_scab_depth_m = std::max(out.rear_scab_depth_m, thickness_m - (x0[2] - 0.5 * h));
     const double vz = p.v[3 * i + 2], m = p.mass[i];
     if (x[2] < 0.0 && vz < 0.0) add(out.front_ejecta, m, vz);
     if (x[2] > thickness_m && vz > 0.0) {

@@ -29,6 +29,12 @@ struct PanelDamage {
   // has left its place; 0 when none has.
   double front_crater_diameter_m = 0.0;
   double rear_scab_diameter_m = 0.0;
+  // How deep the material that left the panel through a face came from: the deepest far side (reference
+  // centre + h/2 from the face) of a particle now out of the entry face (z < 0), and likewise for the
+  // exit face (z > thickness); 0 when none has left. A crater and scab depth from where material left,
+  // measured at the end of the run (ejecta still on their way out are not counted).
+  double front_crater_depth_m = 0.0;
+  double rear_scab_depth_m = 0.0;
   Debris front_ejecta;  // centre before the entry face (z < 0), moving back (v_z < 0)
   Debris rear_ejecta;   // centre past the exit face (z > thickness), moving on (v_z > 0)
   Debris plug;          // of the rear ejecta, those at kPlugSpeedShare of the sphere's v_z or faster

@@ -168,6 +168,8 @@ nlohmann::json panel_json(const PanelDamage& panel) {
   return {{"moved_share", kMovedShare},
           {"front_crater_diameter_m", panel.front_crater_diameter_m},
           {"rear_scab_diameter_m", panel.rear_scab_diameter_m},
+          {"front_crater_depth_m", panel.front_crater_depth_m},
+          {"rear_scab_depth_m", panel.rear_scab_depth_m},
           {"front_ejecta", debris(panel.front_ejecta)},
           {"rear_ejecta", debris(panel.rear_ejecta)},
           {"plug_speed_share", kPlugSpeedShare},

@@ -49,6 +49,8 @@ TEST(MacroPanelDamage, CraterAndScabAreWhereTheFaceLayersLeftTheirPlace) {
   PanelDamage none = panel_damage(b.p, b.body.position, kT, 0.0, 100.0);
   EXPECT_EQ(none.front_crater_diameter_m, 0.0);
   EXPECT_EQ(none.rear_scab_diameter_m, 0.0);
+  EXPECT_EQ(none.front_crater_depth_m, 0.0);
+  EXPECT_EQ(none.rear_scab_depth_m, 0.0);
   // Entry layer (z = 0.5 mm): moved by 0.6 h at r = 0 and r = 2 mm; a particle of the second layer moved at
   // r = 3 mm does not count; one moved by 0.4 h (< kMovedShare) at r = 3 mm neither. Exit layer: r = 1 mm.
   move(b, at(b, 0, 0, 0.0005), 0.0006);
@@ -86,6 +88,15 @@ TEST(MacroPanelDamage, DebrisIsWhatLeftEitherFaceAndThePlugWhatMovesWithTheSpher
   // The sphere at 100 m/s: the plug is what moves at 50 m/s or faster.
   EXPECT_EQ(d.plug.particles, 1);
   EXPECT_NEAR(d.plug.velocity_m_s, 80.0, 1e-12);
+  // Depths: the entry face lost a first-layer particle (centre 0.5 mm: 1 mm deep); the exit face lost two
+  // of its last layer (centre 3.5 mm: from 3 mm, 1 mm deep); the one moving back also sits past the face.
+  EXPECT_NEAR(d.front_crater_depth_m, 0.001, 1e-12);
+  EXPECT_NEAR(d.rear_scab_depth_m, 0.001, 1e-12);
+  b.p.x[3 * at(b, 0, 0, 0.0025) + 2] = 0.007;  // a third-layer particle pushed out: the scab 2 mm deep
+  b.p.x[3 * at(b, 0, 0, 0.0015) + 2] = -0.002;  // a second-layer one thrown back: the crater 2 mm deep
+  const PanelDamage deeper = panel_damage(b.p, b.body.position, kT, 0.0, 100.0);
+  EXPECT_NEAR(deeper.rear_scab_depth_m, 0.002, 1e-12);
+  EXPECT_NEAR(deeper.front_crater_depth_m, 0.002, 1e-12);
   // A sphere that did not go on forward leaves no plug.
   EXPECT_EQ(panel_damage(b.p, b.body.position, kT, 0.0, -5.0).plug.particles, 0);
 }
