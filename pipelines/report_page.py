@@ -8,9 +8,10 @@ page, so the folder is self-contained). Sections, each shown when its files exis
 "not run" with its make command otherwise: the microcell ensemble (OUT/micro/*.png), the calibration
 (OUT/calibrate/: fit_report.json, figures), the seven shots (OUT/shots/comparison.md, lambert_jonas.md),
 the shots at measured thickness, the velocity sweeps (OUT/sweep/t*/sweep.{md,png}), the ballistic limit
-(OUT/ballistic_limit/ballistic_limit.md), the thickness study (OUT/thickness/thickness.{md,png}), and the
-provenance of every uhpc-macro run under OUT (result.json: program version, commit, config hash, the files
-read with their hashes, the overrides).
+(OUT/ballistic_limit/ballistic_limit.md), the thickness study (OUT/thickness/thickness.{md,png}), every
+ballistic-limit estimate side by side with its method, the runs' warnings, and the provenance of every uhpc-macro run under OUT (result.json: program version, commit, config hash, the files
+read with their hashes, the overrides). Each study says the case, SDEL, spacing and particle count of its
+runs, and one coarser than the paper's 3.0 mm core is marked as a demonstration.
 """
 import argparse
 import json
@@ -93,6 +94,88 @@ def calibration_lines(rep, paper):
     return lines
 
 
+PAPER_AXIS_SPACING_M = 0.003  # the paper's particle spacing at the panel's centre (section 5.4)
+
+
+def study_label(run_dirs):
+    """One line saying what a study's runs were made of (the case file, the SDEL, the spacing at the axis and
+    the particle count), read from their config.json and result.json; a study coarser than the paper's 3.0 mm
+    core is marked as a demonstration of the workflow. "" when no run is there."""
+    cases, sdels, spacings, counts = set(), set(), set(), set()
+    for d in run_dirs:
+        try:
+            config = json.loads((d / "config.json").read_text())
+            result = json.loads((d / "result.json").read_text())
+        except (OSError, ValueError):
+            continue
+        target = config.get("case", {}).get("target", {})
+        cases.add(pathlib.Path(config.get("case_file", "?")).name)
+        sdels.update(pathlib.Path(f["path"]).name for f in config.get("files", []) if f.get("role") == "sdel")
+        spacing = target.get("h_axis_m", target.get("spacing_m"))
+        if spacing is not None:
+            spacings.add(float(spacing))
+        counts.add(result.get("particle_count"))
+    if not cases:
+        return ""
+    join = lambda xs: ", ".join(f"`{x}`" for x in sorted(xs))
+    line = (f"Case {join(cases)}" + (f", SDEL {join(sdels)}" if sdels else "")
+            + (f"; axis spacing {', '.join(f'{1e3 * h:.2f}' for h in sorted(spacings))} mm" if spacings else "")
+            + f"; {', '.join(str(c) for c in sorted(c for c in counts if c is not None))} particles.")
+    if spacings and max(spacings) > PAPER_AXIS_SPACING_M * 1.001:
+        line += (f" **A demonstration**: coarser than the paper's {1e3 * PAPER_AXIS_SPACING_M:.1f} mm core, so its "
+                 "figures show the workflow, not converged answers.")
+    return line
+
+
+def fit_row(study, method, f, fixed_p):
+    """A row of the ballistic-limit table from a Lambert-Jonas fit, with what a reader must know of it."""
+    ci = f.get("bootstrap", {}).get("ci", {}).get("v_bl_m_s")
+    dof = f["points"] - (2 if fixed_p else 3)
+    notes = []
+    if not f.get("v_bl_bracketed", True):
+        notes.append("extrapolated (every run perforated)")
+    if dof <= 0:
+        notes.append(f"exact: {f['points']} runs, {f['points'] - dof} constants")
+    if f.get("p_at_search_edge"):
+        notes.append("p at its search edge")
+    interval = f"[{ci[0]:.0f}, {ci[1]:.0f}] (bootstrap 95 %)" if ci else ""
+    return f"| {study} | {method} | {f['v_bl_m_s']:.0f} | {interval} | {f['points']} | {'; '.join(notes)} |"
+
+
+def ballistic_limit_rows(root):
+    """Every ballistic-limit estimate under OUT, each labelled with its method: the bisection's bracket and the
+    Lambert-Jonas fits (p free, p = 1, p = 2) of the shots, the sweeps and the thickness study."""
+    rows = []
+    bl = root / "ballistic_limit" / "ballistic_limit.json"
+    if bl.is_file():
+        b = json.loads(bl.read_text())
+        notes = []
+        if b.get("undecided_runs_m_s"):
+            notes.append(f"undecided at {b.get('end_time_s')} s counted as not perforating: {b['undecided_runs_m_s']} m/s")
+        rows.append(f"| ballistic_limit | bisection: highest not perforating to lowest perforating | "
+                    f"{b['estimate_m_s']:.0f} | [{b['highest_not_perforating_m_s']:g}, {b['lowest_perforating_m_s']:g}] "
+                    f"(bracket) | {len(b.get('runs', []))} | {'; '.join(notes)} |")
+    studies = [(d, root / d / "lambert_jonas.json") for d in ("shots", "shots_measured")]
+    studies += [(rel(p.parent, root), p) for p in sorted(root.glob("sweep/t*/sweep.json"))]
+    for study, path in studies:
+        if not path.is_file():
+            continue
+        data = json.loads(path.read_text())
+        fits = data.get("fits", data)
+        for name, f in fits.items():
+            if name.startswith("experiments") or not isinstance(f, dict) or "v_bl_m_s" not in f:
+                continue
+            fixed = "p = 1" in name
+            rows.append(fit_row(study, "Lambert-Jonas, p = 1" if fixed else "Lambert-Jonas, p free", f, fixed))
+    th = root / "thickness" / "thickness.json"
+    if th.is_file():
+        for s in json.loads(th.read_text()).get("thicknesses", []):
+            f = s.get("lambert_jonas_p2")
+            if f:
+                rows.append(fit_row(f"thickness {1e3 * s['thickness_m']:.2f} mm", "Lambert-Jonas, p = 2", f, True))
+    return rows
+
+
 def provenance_rows(root):
     rows = []
     for res in sorted(root.rglob("result.json")):
@@ -152,6 +235,7 @@ def main():
                                 "make -C pipelines shots-measured")):
         p.add("", f"## {name}")
         if (root / sub / "comparison.md").is_file():
+            p.add("", study_label(sorted((root / sub).glob("v*"))))
             p.include(root / sub / "comparison.md")
             if (root / sub / "lambert_jonas.md").is_file():
                 p.include(root / sub / "lambert_jonas.md")
@@ -161,7 +245,7 @@ def main():
     p.add("", "## Velocity sweep")
     sweeps = sorted((root / "sweep").glob("t*/sweep.md")) if (root / "sweep").is_dir() else []
     for md in sweeps:
-        p.add("", f"### Thickness {md.parent.name[1:]} m")
+        p.add("", f"### Thickness {md.parent.name[1:]} m", "", study_label(sorted(md.parent.glob("v*"))))
         if (md.parent / "sweep.png").is_file():
             p.figure(md.parent / "sweep.png", f"residual against impact velocity, thickness {md.parent.name[1:]} m")
         p.include(md)
@@ -170,17 +254,30 @@ def main():
 
     p.add("", "## Ballistic limit (bisection)")
     if (root / "ballistic_limit" / "ballistic_limit.md").is_file():
+        p.add("", study_label(sorted((root / "ballistic_limit").glob("v*"))))
         p.include(root / "ballistic_limit" / "ballistic_limit.md")
     else:
         p.not_run("the ballistic-limit bisection", "make -C pipelines ballistic-limit")
 
     p.add("", "## Thickness study")
     if (root / "thickness" / "thickness.md").is_file():
+        p.add("", study_label(sorted(root.glob("sweep/t*/v*"))))
         if (root / "thickness" / "thickness.png").is_file():
             p.figure(root / "thickness" / "thickness.png", "residual velocity and ballistic limit against thickness")
         p.include(root / "thickness" / "thickness.md")
     else:
         p.not_run("the thickness study", "make -C pipelines thickness-study")
+
+    p.add("", "## Ballistic limit: every estimate", "",
+          "One answer per study and method: the bisection's bracket (a property of the runs' end time when runs "
+          "near the limit end undecided), and Lambert-Jonas fits, vr = a (v^p - v_bl^p)^(1/p), with p free or held "
+          "at 1 or 2; a fit with as many constants as runs passes through them exactly and says nothing of its "
+          "error, and an extrapolated v_bl is the fitted curve's foot below the slowest perforating run.")
+    estimates = ballistic_limit_rows(root)
+    if estimates:
+        p.add("", "| study | method | v_bl m/s | interval | runs | notes |", "|---|---|---|---|---|---|", *estimates)
+    else:
+        p.add("", "No ballistic-limit estimate under the folder.")
 
     p.add("", "## Warnings of the runs", "",
           "What each run said about its own numbers (result.json `warnings`, macro/README.md): a target too few "

@@ -137,6 +137,14 @@ def main():
     check(len(links) >= 2, f"the page shows figures ({len(links)})")
     check(all((out / "report" / l).is_file() for l in links), "every figure the page links is in the folder")
     check("Not run: the seven shots (31.75 mm). Command: `make -C pipelines shots`" in page, "shots listed as not run")
+    # Each study names its case and spacing; the coarse disc (6 mm) is marked a demonstration.
+    check("Case `macro_disc_afc_coarse.json`" in page and "axis spacing 6.00 mm" in page
+          and "**A demonstration**" in page, "the studies are labelled with their case and marked a demonstration")
+    # Every ballistic-limit estimate in one table with its method; the exact p = 2 fits say so.
+    estimates = page.split("## Ballistic limit: every estimate")[-1].split("## Warnings")[0]
+    check("| sweep/t0.03175 | Lambert-Jonas, p free |" in estimates and "| sweep/t0.03175 | Lambert-Jonas, p = 1 |"
+          in estimates and "| Lambert-Jonas, p = 2 |" in estimates and "exact: 2 runs, 2 constants" in estimates,
+          "the report's ballistic-limit table labels each estimate with its study and method")
     fit = json.loads((out / "calibrate" / "fit_report.json").read_text())["sdel"]
     check(f"| A | {fit['constants']['A']:.4g} | {fit['standard_errors']['A']:.3g} |" in page
           and "| 0.0002 |" in page, "the calibration shows the fitted A with its standard error beside Table 4's")
