@@ -136,7 +136,8 @@ std::mutex& hdf5_mutex() {
 }
 
 std::optional<CellStatus> status_from_name(const std::string& s) {
-  for (CellStatus c : {CellStatus::Separated, CellStatus::StepLimit, CellStatus::Failed})
+  if (s == "step_limit") return CellStatus::ReachedEnd;  // its earlier name, in the archived cells
+  for (CellStatus c : {CellStatus::Separated, CellStatus::ReachedEnd, CellStatus::Failed})
     if (s == to_string(c)) return c;
   return std::nullopt;
 }

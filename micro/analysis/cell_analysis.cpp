@@ -611,10 +611,10 @@ CellResponse Analysis::run(const FractureObserver& observer) {
   build_stage();
   out_.nodes = base_.node_count();
   if (elastic_branch() && first_cracking()) {
-    out_.status = CellStatus::StepLimit;
+    out_.status = CellStatus::ReachedEnd;
     for (int step = 0; step < o_.max_steps; ++step)
       if (path_step(step) == StepEnd::Stop) break;
-    if (out_.status == CellStatus::StepLimit && out_.diagnostic.empty()) out_.diagnostic = "reached max_steps";
+    if (out_.status == CellStatus::ReachedEnd && out_.diagnostic.empty()) out_.diagnostic = "reached max_steps";
   }
   out_.dofs = stage_.model().dof_count();
   out_.enriched_nodes = stage_.model().enriched_node.size();
@@ -672,7 +672,7 @@ bool Analysis::elastic_branch() {
   books_.accept(EnergyBooks::imbalance(out_.states.back()));
   note_peak(out_.states.back());
   if (!(lambda_act <= lambda_max)) {
-    out_.status = CellStatus::StepLimit;
+    out_.status = CellStatus::ReachedEnd;
     out_.diagnostic = "no crack reached the growth criterion below max_strain";
     return false;
   }

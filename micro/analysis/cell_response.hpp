@@ -32,7 +32,7 @@ struct CellState {
 
 enum class CellStatus {
   Separated,   // the cell carries (almost) no load any more: the path reached full separation
-  StepLimit,   // stopped at the configured step or strain limit before separation
+  ReachedEnd,  // reached the loading path's planned end (the strain grid's end or max_steps) before separating
   Failed       // the solver failed; `diagnostic` says where and why
 };
 
@@ -42,7 +42,7 @@ struct CellResponse {
   double porosity = 0.0;
   std::vector<CellState> states;     // states[0] is the unloaded cell (all zeros)
   CellStatus status = CellStatus::Failed;
-  std::string diagnostic;            // empty unless Failed (or a note on StepLimit)
+  std::string diagnostic;            // empty unless Failed (or a note on ReachedEnd)
   std::size_t nodes = 0, dofs = 0, enriched_nodes = 0;
   std::size_t growth_unloads = 0;    // growth events passed by unloading to zero (GrowthFallback)
   std::size_t jumps = 0;             // jumps taken by relaxation (JumpFallback::Relax, GrowthFallback::Relax)
@@ -59,7 +59,7 @@ struct CellResponse {
 inline const char* to_string(CellStatus s) {
   switch (s) {
     case CellStatus::Separated: return "separated";
-    case CellStatus::StepLimit: return "step_limit";
+    case CellStatus::ReachedEnd: return "reached_end";
     case CellStatus::Failed: return "failed";
   }
   return "failed";

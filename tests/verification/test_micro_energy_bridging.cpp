@@ -224,7 +224,7 @@ TEST(MicroEnergyBridgingPath, HillMandelErrorShowsOnlyOnceCracksOpen) {
 TEST(MicroEnergyBridgingPath, UnseparatedCurveHoldsItsLastDamageAndSaysWhereDataEnd) {
   CellResponse r = recovering_path();
   r.states.pop_back();
-  r.status = CellStatus::StepLimit;
+  r.status = CellStatus::ReachedEnd;
   const BridgedPath p = bridge_energy(r);
   const ControlledCurve c = strain_controlled_curve(r, p, first_passage());
   EXPECT_FALSE(c.separated);
