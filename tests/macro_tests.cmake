@@ -17,6 +17,8 @@ uhpc_add_test(unit unit/test_macro_afc_tension.cpp uhpc_macro_materials)
 uhpc_add_test(unit unit/test_macro_afc_failed.cpp uhpc_macro_materials)
 uhpc_add_test(unit unit/test_macro_afc_lode_limit.cpp uhpc_macro_materials)
 uhpc_add_test(unit unit/test_macro_afc_tensile_rate.cpp uhpc_macro_materials)
+# The tensile DIF in a one-dimensional spall (plate impact in uniaxial strain) in the explicit solver.
+uhpc_add_test(verification verification/test_macro_spall.cpp uhpc_macro_solver)
 # Sphere contact, step-collapse guard, robustness exits and the uhpc-macro program.
 uhpc_add_test(verification verification/test_macro_sphere_contact.cpp uhpc_macro_solver)
 uhpc_add_test(verification verification/test_macro_contact_convergence.cpp uhpc_macro_solver)
