@@ -99,6 +99,7 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
     r["residual_speed_m_s"] = impact.residual_speed_m_s;
     r["deflection_deg"] = impact.deflection_deg;
     r["outcome_time_s"] = impact.outcome_time_s;
+    if (impact.outcome == ImpactOutcome::Embedded) r["embedded_by"] = to_string(impact.embedded_by);
     if (impact.perforated() || impact.rebounded()) r["exit_time_s"] = impact.outcome_time_s;
     r["velocity_reduction"] = (vi - vr) / vi;
     r["kinetic_energy_reduction"] = (vi * vi - vr * vr) / (vi * vi);
@@ -274,8 +275,8 @@ void run_macro(const MacroRunArgs& args) {
                                        (args.out / "fields.h5").string(), (args.out / "diagnostic.json").string()));
     }
     history.add(solver);
-    impact.update(solver);
     balance.update(solver);
+    impact.update(solver, balance.worst_energy);
     if (solver.steps() % settings.run.output_interval_steps == 0) {
       fields.write(solver);
       history.save(args.out / "history.csv");  // a killed run keeps its history up to here

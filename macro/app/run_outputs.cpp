@@ -86,7 +86,16 @@ const char* to_string(ImpactOutcome outcome) {
   return "undecided";
 }
 
-void ImpactTracker::update(const ExplicitSolver& s) {
+const char* to_string(EmbeddedBy reason) {
+  switch (reason) {
+    case EmbeddedBy::AtRest: return "at_rest";
+    case EmbeddedBy::WithinEnergyResolution: return "within_energy_resolution";
+    case EmbeddedBy::None: break;
+  }
+  return "";
+}
+
+void ImpactTracker::update(const ExplicitSolver& s, double worst_energy_error) {
   if (decided()) return;
   const RigidSphere& sp = s.sphere();
   const EnergyLedger& e = s.ledger();
@@ -99,8 +108,12 @@ void ImpactTracker::update(const ExplicitSolver& s) {
     outcome = ImpactOutcome::Perforated;
   } else if (free && sp.x[2] + sp.radius_m < 0.0 && sp.v[2] < 0) {
     outcome = ImpactOutcome::Rebounded;
-  } else if (sp.v[2] <= target_vz && sp.x[2] > 0.0) {
+  } else if (sp.x[2] > 0.0 && sp.v[2] <= target_vz) {
     outcome = ImpactOutcome::Embedded;
+    embedded_by = EmbeddedBy::AtRest;
+  } else if (sp.x[2] > 0.0 && e.kinetic_sphere <= worst_energy_error * e.kinetic_initial) {
+    outcome = ImpactOutcome::Embedded;
+    embedded_by = EmbeddedBy::WithinEnergyResolution;
   } else {
     return;
   }

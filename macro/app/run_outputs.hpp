@@ -72,11 +72,19 @@ class History {
 // How the shot ended (result.json "outcome").
 enum class ImpactOutcome { Undecided, Perforated, Embedded, Rebounded };
 const char* to_string(ImpactOutcome outcome);
+// Why a sphere counts as embedded: at rest relative to the target's centre of mass, or its kinetic
+// energy below the run's energy-balance error ("at_rest", "within_energy_resolution").
+enum class EmbeddedBy : std::uint8_t { None, AtRest, WithinEnergyResolution };
+const char* to_string(EmbeddedBy reason);
 
 // Decides the outcome of the shot, step by step:
 //   perforated  the sphere's centre is past the exit face, it moves on and no particle pushes it;
-//   embedded    it has stopped relative to the target (axial velocity <= that of the target's centre of
-//               mass) with its centre past the entry face: it can no longer perforate;
+//   embedded    its centre is past the entry face and it has stopped: relative to the target (axial
+//               velocity <= that of the target's centre of mass), or its kinetic energy has fallen below
+//               the run's worst energy-balance error so far (what is left of its motion is below what the
+//               run resolves: a sphere drifting at 0.2 % of its impact speed in its crater, or carried at
+//               1.4 % by the shear cone that it pushes out of the rear face, is not a perforation the run
+//               can tell);
 //   rebounded   it is back out of the entry face, moving back, and no particle pushes it (a sphere
 //               that stops before its centre has passed the entry face is followed until then);
 //   undecided   none of these by the end time (reported, never taken for a perforation).
@@ -93,7 +101,12 @@ struct ImpactTracker {
   double residual_velocity_m_s = 0.0;
   double residual_speed_m_s = 0.0;
   double deflection_deg = 0.0;
-  void update(const ExplicitSolver& solver);
+  // What decided an embedded sphere (result.json's embedded_by; kept as plain data: checkpoints hold
+  // this struct's bytes).
+  EmbeddedBy embedded_by = EmbeddedBy::None;
+  // `worst_energy_error`: the run's worst energy-balance error so far, a share of the impact energy
+  // (BalanceTracker::worst_energy, updated before this).
+  void update(const ExplicitSolver& solver, double worst_energy_error);
   bool decided() const { return outcome != ImpactOutcome::Undecided; }
   bool perforated() const { return outcome == ImpactOutcome::Perforated; }
   bool rebounded() const { return outcome == ImpactOutcome::Rebounded; }
