@@ -2,6 +2,8 @@
 uhpc_add_test(unit unit/test_macro_materials.cpp uhpc_macro_materials)
 uhpc_add_test(unit unit/test_macro_bodies.cpp uhpc_macro_bodies)
 uhpc_add_test(verification verification/test_macro_wave_speed.cpp uhpc_macro_solver)
+# The energy per crack area of a bar pulled apart, against the spacing (sdel_regularization).
+uhpc_add_test(verification verification/test_macro_crack_band.cpp uhpc_macro_solver)
 uhpc_add_test(verification verification/test_macro_bar_impact.cpp uhpc_macro_solver)
 uhpc_add_test(verification verification/test_macro_taylor_bar.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_solver_kinematics.cpp uhpc_macro_solver)
@@ -17,6 +19,7 @@ uhpc_add_test(unit unit/test_macro_afc_tension.cpp uhpc_macro_materials)
 uhpc_add_test(unit unit/test_macro_afc_failed.cpp uhpc_macro_materials)
 uhpc_add_test(unit unit/test_macro_afc_lode_limit.cpp uhpc_macro_materials)
 uhpc_add_test(unit unit/test_macro_afc_tensile_rate.cpp uhpc_macro_materials)
+uhpc_add_test(unit unit/test_macro_afc_crack_band.cpp uhpc_macro_materials)
 # The tensile DIF in a one-dimensional spall (plate impact in uniaxial strain) in the explicit solver.
 uhpc_add_test(verification verification/test_macro_spall.cpp uhpc_macro_solver)
 # Sphere contact, step-collapse guard, robustness exits and the uhpc-macro program.

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
 #include "materials/afc_strength.hpp"
+#include "materials/point_driver.hpp"
 #include "materials/principal_stress_limit.hpp"
 
 namespace uhpc::macro {
@@ -58,6 +60,8 @@ AfcMaterial::AfcMaterial(const AfcParams& params) : p_(params), hydro_(params) {
   require(p.options.damage_eps_min > 0, "damage_eps_min must be > 0");
   require(std::isfinite(p.options.rate_factor_floor) && p.options.rate_factor_floor >= 0,
           "rate_factor_floor must be finite and >= 0");
+  require(std::isfinite(p.options.crack_band_reference_size_m) && p.options.crack_band_reference_size_m > 0,
+          "crack_band_reference_size_m must be finite and > 0");
   // The crushing curve must rise (a falling hydrostat has no sound speed) and stay below the unloading
   // lines (K_u >= K_e must bound its slope, else unloading would cross the loading curve).
   const double Ke = hydro_.elastic_bulk_modulus();
@@ -73,6 +77,11 @@ AfcMaterial::AfcMaterial(const AfcParams& params) : p_(params), hydro_(params) {
           "principal_stress_limit needs tensile_degradation = cutoff (the split already degrades the tension)");
   principal_limit_ = p.options.principal_stress_limit == PrincipalStressLimit::Tmax ? p.Tmax_Pa
                                                                                     : afc_uniaxial_tensile_strength(p);
+  if (p.options.sdel_regularization == SdelRegularization::CrackBand &&
+      p.options.tensile_degradation == TensileDegradation::Cutoff && p.options.tensile_damage == TensileDamage::Sdel) {
+    track_tensile_work_ = true;
+    build_crack_band_curve();
+  }
 }
 
 double AfcMaterial::equivalent_tensile_strain(const Mat3& strain) const {
@@ -113,6 +122,68 @@ double AfcMaterial::sdel_damage(double kappa, double spacing_m) const {
   return std::clamp(d, 0.0, 1.0);
 }
 
+double AfcMaterial::crack_band_damage(double scaled_tensile_work) const {
+  // The reference curve: d+ against the tensile work, from the onset (work 0) to failure (d+ = 1).
+  const auto& w = band_.work;
+  if (!(scaled_tensile_work > 0.0)) return 0.0;
+  if (scaled_tensile_work >= w.back()) return 1.0;
+  const std::size_t k = static_cast<std::size_t>(std::upper_bound(w.begin(), w.end(), scaled_tensile_work) - w.begin());
+  if (k == 0) return band_.onset;
+  const double t = (scaled_tensile_work - w[k - 1]) / (w[k] - w[k - 1]);
+  const double step = (1.0 - band_.onset) / static_cast<double>(kBandPoints - 1);
+  return band_.onset + step * (static_cast<double>(k - 1) + t);
+}
+
+void AfcMaterial::build_crack_band_curve() {
+  // The reference: the same law with the paper's lambda at h = l_ref (so SDEL(l_ref / l_mac)), driven in
+  // quasi-static uniaxial stress (F = 1, no DIF) to full damage. Its tensile work is recorded against d+
+  // from the onset of tensile yielding (the peak: before it the cutoff coupling dissipates nothing) and
+  // resampled on kBandPoints values of d+, evenly spaced from the onset to 1.
+  AfcParams ref = p_;
+  ref.options.sdel_regularization = SdelRegularization::Lambda;
+  ref.options.tensile_rate = TensileRate::Off;
+  const double l_ref = p_.options.crack_band_reference_size_m;
+  AfcMaterial reference(ref);
+  reference.track_tensile_work_ = true;
+  PointDriver<AfcMaterial> pt(reference, l_ref);
+  std::vector<double> d, w;  // from the onset on (construction only)
+  const double de = 1e-7, dt = 1e3;  // a rate far below edot0: F = its floor
+  for (int i = 0; i < 1000000 && pt.state().d_plus < 1.0; ++i) {
+    const double booked = pt.state().plastic_work + pt.state().opening_work;
+    pt.uniaxial_stress_step(de, dt);
+    // The onset is the first step that yields (its work may be a round-off below 0: the curve starts at
+    // 0 and never falls).
+    if (d.empty() && !(pt.state().plastic_work + pt.state().opening_work > booked)) continue;
+    const double work = std::max(pt.state().tensile_work, w.empty() ? 0.0 : w.back());
+    if (d.empty()) {
+      d.push_back(pt.state().d_plus);
+      w.push_back(0.0);
+    } else if (pt.state().d_plus > d.back()) {
+      d.push_back(pt.state().d_plus);
+      w.push_back(work);
+    } else {
+      w.back() = work;  // the same d+: the work of the step goes with it
+    }
+  }
+  require(!d.empty() && d.back() >= 1.0 && d.size() >= 2,
+          "sdel_regularization crack_band: the reference point does not fail in uniaxial tension");
+  band_.onset = d.front();
+  for (int j = 0; j < kBandPoints; ++j) {
+    const double target = band_.onset + (1.0 - band_.onset) * j / (kBandPoints - 1);
+    const std::size_t k = static_cast<std::size_t>(std::lower_bound(d.begin(), d.end(), target) - d.begin());
+    if (k == 0) {
+      band_.work[j] = 0.0;
+    } else if (k >= d.size()) {
+      band_.work[j] = w.back();
+    } else {
+      const double t = (target - d[k - 1]) / (d[k] - d[k - 1]);
+      band_.work[j] = w[k - 1] + t * (w[k] - w[k - 1]);
+    }
+  }
+  band_.work[0] = 0.0;
+  for (int j = 1; j < kBandPoints; ++j) band_.work[j] = std::max(band_.work[j], band_.work[j - 1]);
+}
+
 void AfcMaterial::update(State& st, const MaterialStep& step) const {
   const AfcOptions& o = p_.options;
   const bool split = o.tensile_degradation == TensileDegradation::Split;
@@ -125,6 +196,10 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   const bool rate = o.tensile_rate != TensileRate::Off;
   // The tensile DIF of this step's largest principal strain rate (used when the tensile strain grows).
   const double dif_now = rate ? afc_tensile_dif(largest_principal_rate(de, step.dt_s), p_) : 1.0;
+  // State::tensile_work (SdelRegularization::CrackBand): the start of the step's stress and free energy
+  // per reference volume (V_old / V0 = 1 / (rho_new / rho0 exp(tr d eps)), the solver's volume update).
+  const Mat3 stress_old = track_tensile_work_ ? st.stress : Mat3::Zero();
+  const double psi_old = track_tensile_work_ ? stored_energy(st) / (step.density_ratio * std::exp(de.trace())) : 0.0;
 
   // 1. Hydrostat history.
   const double mu_max_old = st.mu_max;
@@ -135,7 +210,9 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   st.crushing_work += hydro_.crushing_dissipation(mu_max_old, st.mu_max, st.opening_strain);
 
   // 2. Tensile damage (never decreasing: kappa and d+ are history maxima).
+  bool crack_band_growing = false;  // the split's CrackBand and kappa grew in this step
   if (o.tensile_damage == TensileDamage::Sdel) {
+    const double kappa_old = st.tensile_strain_max;
     double e;
     if (p_.strain_measure == TensileStrainMeasure::EffectiveTensile) {
       // The driver: no tensile limit; on the compressive side the deviator yields onto eq. 33 as the
@@ -165,7 +242,28 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
       st.tensile_strain_max += (e - st.tensile_strain_reached) / dif_now;
       st.tensile_strain_reached = e;
     }
-    st.d_plus = std::max(st.d_plus, sdel_damage(st.tensile_strain_max, step.spacing_m));
+    if (o.sdel_regularization == SdelRegularization::Lambda) {
+      st.d_plus = std::max(st.d_plus, sdel_damage(st.tensile_strain_max, step.spacing_m));
+    } else {
+      if (!(step.spacing_m > 0.0) || !std::isfinite(step.spacing_m))
+        throw std::invalid_argument("AfcMaterial: the particle spacing h_I must be > 0 for the SDEL");
+      if (split) {
+        // The split's crack band (below, once the effective stress is known), only while kappa grows:
+        // with h > l_ref a falling stress would raise the band strain, and unloading must not damage.
+        crack_band_growing = st.tensile_strain_max > kappa_old;
+      } else {
+        // The cutoff coupling's crack band (afc_params.hpp): up to the reference's onset of tensile
+        // yielding d+ is the reference SDEL of kappa (nothing is dissipated yet); past it d+ follows the
+        // tensile work per volume scaled by h / l_ref along the reference's own curve (and by 1 / DIF^2
+        // with the tensile DIF: the lambda law stretches its curve and raises its cutoff by DIF, which
+        // dissipates DIF^2 the energy), the work of the steps before (explicit: solving for this step's
+        // own work at its fixed strain increment is unstable, a falling limit at fixed strain releases
+        // several times what it releases on the equilibrium path, and substeps at fixed strain are too).
+        const double energy_scale = step.spacing_m / o.crack_band_reference_size_m / (st.tensile_dif * st.tensile_dif);
+        const double before_onset = std::min(sdel_damage(st.tensile_strain_max, o.crack_band_reference_size_m), band_.onset);
+        st.d_plus = std::max(st.d_plus, std::max(before_onset, crack_band_damage(st.tensile_work * energy_scale)));
+      }
+    }
   } else if (rate) {
     st.tensile_dif = dif_now;  // no damage to hold it for: the cutoff follows the rate
   }
@@ -210,7 +308,10 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
     st.plastic_strain += dep;
     st.plastic_work += S * dep / step.density_ratio;  // s : d eps_p = S d eps_p per current volume
   }
+  const double plastic_before_limit = st.plastic_work;
   if (o.principal_stress_limit != PrincipalStressLimit::Off) limit_principal_stress(st, s, P, dif, step.density_ratio);
+  // A tensile mechanism acted in this step: eq. 35's return, the cutoff or the principal-stress limit.
+  const bool tensile_action = (open_side && dep > 0.0) || st.at_tensile_cutoff || st.plastic_work > plastic_before_limit;
 
   // 4. Compressive damage (eq. 36), only under compression; d- enters the next step's strength. The
   // principal-stress limit is a tensile mechanism (its damage is d+) and does not add to d-.
@@ -222,8 +323,45 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   st.mu = mu_h;
   st.effective_stress = s - P * Mat3::Identity();
 
+  // The split's crack band: (1 - d+) sigma_e(kappa) must be the reference band's (1 - d_ref(u)) sigma_e(u).
+  // The effective stress does not depend on d+ (its limits are the undamaged ones), so its measure e_e
+  // is this step's: sigma_e grows with the strain up to e_e and is held at AFC's strength beyond, so
+  // sigma_e(u) / sigma_e(kappa) = m(u) / e_e with m(u) = min(u, e_e), and the elastic part of the
+  // point is (1 - d_ref(u)) m(u). The band's strain u = e_el + (kappa - e_el) h / l_ref is then the
+  // root of f(u) = u - (1 - r) (1 - d_ref(u)) m(u) - r kappa, r = h / l_ref, solved here rather than
+  // lagged by a step: the lag's fixed-point map is not a contraction on the steep part of the SDEL.
+  // For r <= 1, f rises (f' >= r) from f(r kappa) <= 0 to f(kappa) >= 0: one root, by bisection. For
+  // r > 1 the bracket is [kappa, r kappa] and a steep softening can have several roots (the point
+  // snaps back: docs/physics.md section 4.4).
+  if (split && crack_band_growing) {
+    const double kappa = st.tensile_strain_max, r = step.spacing_m / o.crack_band_reference_size_m;
+    const double e_e = effective_tensile_strain(st.effective_stress) / st.tensile_dif;
+    const auto elastic = [&](double u) {
+      return (1.0 - sdel_damage(u, o.crack_band_reference_size_m)) * std::min(u, e_e);
+    };
+    double lo = std::min(r, 1.0) * kappa, hi = std::max(r, 1.0) * kappa;
+    for (int i = 0; i < 60 && hi - lo > 1e-12 * kappa; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (mid - (1.0 - r) * elastic(mid) - r * kappa < 0.0 ? lo : hi) = mid;
+    }
+    const double u = 0.5 * (lo + hi), d_ref = sdel_damage(u, o.crack_band_reference_size_m);
+    const double ratio = e_e > 0.0 ? std::min(u, e_e) / e_e : 1.0;
+    st.d_plus = std::max(st.d_plus, std::clamp(1.0 - (1.0 - d_ref) * ratio, 0.0, 1.0));
+  }
+
   // 5. The stress the solver integrates (eq. 21): the tensile principal part degraded by 1 - d+.
   st.stress = split ? scale_tensile_part(st.effective_stress, 1.0 - st.d_plus) : st.effective_stress;
+
+  // The tensile work: what a step in which a tensile mechanism acted dissipated, its stress work less the
+  // change of the free energy (per reference volume, the trapezoid on the step). Booked plastic and
+  // opening work alone miss the energy a falling cutoff or strength releases at a fixed strain, which in
+  // a laterally held point is most of it. Steps with no tensile mechanism are skipped, so the round-off
+  // of elastic steps does not add up.
+  if (track_tensile_work_ && tensile_action) {
+    const double J_new = 1.0 / step.density_ratio, J_old = J_new * std::exp(-de.trace());
+    const double work = 0.5 * (stress_old + st.stress).cwiseProduct(de).sum() * 0.5 * (J_old + J_new);
+    st.tensile_work += work - (stored_energy(st) * J_new - psi_old);
+  }
 }
 
 void AfcMaterial::limit_principal_stress(State& st, Mat3& s, double P, double dif, double density_ratio) const {

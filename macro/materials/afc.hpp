@@ -7,7 +7,10 @@
 //      dissipation;
 //   2. tensile damage: e = equivalent tensile strain by the handoff's measure, kappa = max(kappa, e)
 //      (with AfcOptions::tensile_rate: kappa += (new growth of e) / DIF of that step, DIF held between),
-//      d+ = max(d+, SDEL(lambda, kappa)), lambda = h_I / l_mac (h_I = MaterialStep::spacing_m). The
+//      d+ = max(d+, SDEL(lambda, kappa)), lambda = h_I / l_mac (h_I = MaterialStep::spacing_m); with
+//      SdelRegularization::CrackBand (afc_params.hpp) the reference size's SDEL up to the reference's
+//      onset of tensile yielding, past it d+ of the reference at the tensile work so far scaled by
+//      h_I / l_ref (cutoff coupling), or the reference band's d+ at the same crack opening (split). The
 //      default measure (EffectiveTensile) reads the driver stress sigma_bar: the same material with no
 //      tensile limit (P from the whole rho/rho0 - 1, the deviator returned only on the compressive
 //      side, onto eq. 33), so e is the norm of the positive principal strains of C^-1 : <sigma_bar>+:
@@ -23,6 +26,7 @@
 //   4. d- += d eps_p / max(P D1, eps_min) + d mu_p / (1.5 C9) while P > 0 (eq. 36), clipped to 1;
 //   5. the stress handed to the solver: sigma_e, or <sigma_e>- + (1 - d+) <sigma_e>+ with the split (eq. 21).
 // d- enters the strength with its value at the start of the step (explicit), d+ with the new value.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -60,6 +64,11 @@ class AfcMaterial {
     // work of the cutoff pressure over it (J per unit reference volume, dissipated).
     double opening_strain = 0.0;
     double opening_work = 0.0;
+    // SdelRegularization::CrackBand (cutoff coupling): the energy dissipated per unit reference volume in
+    // the steps where a tensile mechanism acted (eq. 35's return on the open side, the cutoff, the
+    // principal-stress limit): their stress work less the change of the free energy. It drives d+ past
+    // the onset. 0 with the other options.
+    double tensile_work = 0.0;
     double crushing_work = 0.0;    // J per unit reference volume: crushing of the hydrostat
     double deviatoric_return = 1.0;  // S / q_trial of the last step's radial return (1: elastic step)
     bool at_tensile_cutoff = false;  // the last step's pressure was held at the cutoff
@@ -107,16 +116,34 @@ class AfcMaterial {
   // The EffectiveTensile measure of a driver stress: the norm of the positive principal strains of
   // C^-1 : <sigma_bar>+ (C from K_e and G).
   double effective_tensile_strain(const Mat3& driver_stress) const;
-  // The SDEL d+ at history strain kappa for spacing h (with the zero-anchoring option).
+  // The SDEL d+ at history strain kappa for spacing h (with the zero-anchoring option): the paper's
+  // lambda = h / l_mac law (SdelRegularization::CrackBand evaluates it at h = l_ref).
   double sdel_damage(double kappa, double spacing_m) const;
+  // SdelRegularization::CrackBand with the cutoff coupling: d+ of the reference curve at a tensile work per
+  // volume already scaled by h / l_ref (0 at and below 0, the onset's d+ just above, 1 past failure).
+  double crack_band_damage(double scaled_tensile_work) const;
+  // The onset of the reference curve: d+ of the reference at the peak of its uniaxial tension.
+  double crack_band_onset() const { return band_.onset; }
 
  private:
   // The principal-stress limit's return of the deviator s at pressure P (AfcOptions::principal_stress_limit).
   void limit_principal_stress(State& state, Mat3& s, double P, double dif, double density_ratio) const;
 
+  // The reference curve of SdelRegularization::CrackBand (construction).
+  void build_crack_band_curve();
+
   AfcParams p_;
   AfcHydrostat hydro_;
   double principal_limit_ = 0.0;  // T_R of the principal-stress limit (Pa)
+  // The reference curve of SdelRegularization::CrackBand (cutoff coupling): the tensile work per volume of
+  // the reference point in uniaxial tension at kBandPoints values of d+ evenly spaced from the onset to 1.
+  // A fixed array: copying the law (the solver's saved state) allocates nothing.
+  bool track_tensile_work_ = false;  // accumulate State::tensile_work (the crack band and its reference)
+  static constexpr int kBandPoints = 512;
+  struct CrackBandCurve {
+    double onset = 1.0;
+    std::array<double, kBandPoints> work{};
+  } band_;
 };
 
 }  // namespace uhpc::macro

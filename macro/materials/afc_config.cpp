@@ -41,6 +41,12 @@ AfcOptions afc_options_from_config(const uhpc::Config& c, AfcOptions o) {
     o.tensile_rate = c.choice("tensile_rate", {"off", "fib_model_code_2010"}) == "off" ? TensileRate::Off
                                                                                        : TensileRate::FibModelCode2010;
   if (c.has("sdel_zero_anchored")) o.sdel_zero_anchored = c.flag("sdel_zero_anchored");
+  if (c.has("sdel_regularization"))
+    o.sdel_regularization = c.choice("sdel_regularization", {"lambda", "crack_band"}) == "lambda"
+                                ? SdelRegularization::Lambda
+                                : SdelRegularization::CrackBand;
+  if (c.has("crack_band_reference_size_m"))
+    o.crack_band_reference_size_m = c.number("crack_band_reference_size_m", Range::positive());
   if (c.has("tensile_damage"))
     o.tensile_damage = c.choice("tensile_damage", {"sdel", "off"}) == "off" ? TensileDamage::Off : TensileDamage::Sdel;
   if (c.has("wave_speed_from_unloading_modulus"))

@@ -12,6 +12,7 @@
 //     tensile_degradation ("cutoff" | "split"), lode ("off" | "willam_warnke"), principal_stress_limit
 //     ("off" | "uniaxial_tensile_strength" | "tmax"; needs "cutoff"), opened_volume ("recoverable" |
 //     "permanent"), tensile_rate ("off" | "fib_model_code_2010"), sdel_zero_anchored (bool),
+//     sdel_regularization ("lambda" | "crack_band"), crack_band_reference_size_m (> 0),
 //     tensile_damage ("sdel" | "off"),
 //     wave_speed_from_unloading_modulus (bool).
 // A case file's material.options block (macro/app/material_factory.cpp) takes the same keys and

@@ -82,6 +82,34 @@ enum class OpenedVolume {
   Recoverable,
 };
 
+// [choice] How the SDEL is regularized with the particle spacing h_I (AfcOptions::sdel_regularization).
+// The energy a crack band one particle wide dissipates per unit crack area is G = h W(h), W the work per
+// volume of a point taken to full damage (docs/studies/2026-12-06-crack-band.md).
+enum class SdelRegularization {
+  // [default] The paper's law: d+ = SDEL(lambda_I, kappa), lambda_I = h_I / l_mac (eqs. 25, 37). lambda
+  // steepens the softening beyond e_i, but the energy stored up to e_i and the peak move with h too, so G
+  // is not independent of h (uniaxial tension, 1.5 to 6.0 mm: G 8.5-10.1 J/m^2 for the SDEL alone, 9.9-13.2
+  // with the cutoff coupling).
+  Lambda,
+  // A crack band (Bazant and Oh 1983) on the SDEL of a fixed reference size l_ref
+  // (AfcOptions::crack_band_reference_size_m): a point of any spacing h dissipates l_ref / h times what the
+  // reference point does, so G = h W is the reference's l_ref W_ref at every h.
+  //  - cutoff coupling (d+ acts on the limits; what dissipates is the return onto them and the release of
+  //    the energy they cut): up to the reference's onset of tensile yielding (its peak in uniaxial
+  //    tension) d+ = SDEL(l_ref / l_mac, kappa), capped at the onset's d+; past it d+ = D(W_t h / l_ref),
+  //    W_t the energy the point has dissipated in steps where a tensile mechanism acted
+  //    (State::tensile_work) and D the reference's d+ against that energy in quasi-static uniaxial
+  //    tension (computed once, at construction). The point fails when W_t = W_ref l_ref / h, whatever its
+  //    stress path (a laterally held point as well as a free one). W_t is the steps before's (explicit).
+  //  - split ((1 - d+) on the tensile stress): the reference band at the same crack opening, the root of
+  //    u = e_el + (kappa - e_el) h / l_ref with e_el = (1 - d_ref(u)) min(u, e_e) the elastic part, and
+  //    1 - d+ = (1 - d_ref(u)) min(u, e_e) / e_e (e_e the effective stress's measure): exact in uniaxial
+  //    tension.
+  // Holds for h up to about 1.4 l_ref (cutoff) and l_ref (split); above, a point's elastic energy at its
+  // peak exceeds its share and it snaps back, dissipating more (cutoff) or less (split).
+  CrackBand,
+};
+
 // Where the tensile damage d+ comes from.
 enum class TensileDamage {
   Sdel,  // the SDEL with lambda = h_I / l_mac (default: the paper's model)
@@ -110,6 +138,14 @@ struct AfcOptions {
   // [choice] the SDEL as printed (false, default: d+(0) = 1/(1 + nu exp(lambda chi e_i)) > 0, about
   // 2e-5 at 3 mm) or shifted to start at exactly 0 (true, uhpc::sdel_damage_zero_anchored).
   bool sdel_zero_anchored = false;
+  // [choice] the paper's lambda scaling of the SDEL with h_I (default) or a crack band on the SDEL of the
+  // reference size below (SdelRegularization).
+  SdelRegularization sdel_regularization = SdelRegularization::Lambda;
+  // [choice] l_ref of SdelRegularization::CrackBand: 6.5 mm, the largest microcell size the SDEL was
+  // calibrated at (no extrapolation in lambda, the most representative cell), so every spacing of the
+  // shipped cases (1.5-4.5 mm; the coarse disc's 6-9 mm) is at or below the 1.4 l_ref the crack band holds
+  // to. G = 13.6 J/m^2 with the paper's SDEL and the cutoff coupling, 10.5 J/m^2 for the SDEL alone.
+  double crack_band_reference_size_m = 0.0065;
   // Verification switch (not a modelling choice of the paper): TensileDamage::Off keeps d+ = 0.
   TensileDamage tensile_damage = TensileDamage::Sdel;
   // [choice] The wave speed (hence the stable step) uses the current tangent bulk modulus of the

@@ -38,6 +38,8 @@ TEST(AfcConfig, ShippedFilesGiveTable6AndTheHandoff) {
   EXPECT_EQ(p.options.opened_volume, OpenedVolume::Permanent);
   EXPECT_EQ(p.options.tensile_rate, TensileRate::Off);
   EXPECT_FALSE(p.options.sdel_zero_anchored);
+  EXPECT_EQ(p.options.sdel_regularization, SdelRegularization::Lambda);
+  EXPECT_EQ(p.options.crack_band_reference_size_m, 0.0065);
   EXPECT_EQ(p.options.tensile_damage, TensileDamage::Sdel);
   EXPECT_FALSE(p.options.wave_speed_from_unloading_modulus);
   EXPECT_NO_THROW(AfcMaterial{p});
@@ -49,7 +51,8 @@ TEST(AfcConfig, OptionsBlockIsRead) {
       {"options.rate_factor_floor=0", "options.cap_strength_with_c5=true", "options.damage_eps_min=0.02",
        "options.tensile_degradation=split", "options.lode=willam_warnke", "options.opened_volume=recoverable",
        "options.tensile_rate=fib_model_code_2010", "options.sdel_zero_anchored=true", "options.tensile_damage=off",
-       "options.wave_speed_from_unloading_modulus=true"});
+       "options.wave_speed_from_unloading_modulus=true", "options.sdel_regularization=crack_band",
+       "options.crack_band_reference_size_m=0.003"});
   EXPECT_EQ(p.options.rate_factor_floor, 0.0);
   EXPECT_TRUE(p.options.cap_strength_with_c5);
   EXPECT_EQ(p.options.damage_eps_min, 0.02);
@@ -60,6 +63,10 @@ TEST(AfcConfig, OptionsBlockIsRead) {
   EXPECT_TRUE(p.options.sdel_zero_anchored);
   EXPECT_EQ(p.options.tensile_damage, TensileDamage::Off);
   EXPECT_TRUE(p.options.wave_speed_from_unloading_modulus);
+  EXPECT_EQ(p.options.sdel_regularization, SdelRegularization::CrackBand);
+  EXPECT_EQ(p.options.crack_band_reference_size_m, 0.003);
+  EXPECT_EQ(load_afc_params(kAfc, kSdel, {"options.sdel_regularization=lambda"}).options.sdel_regularization,
+            SdelRegularization::Lambda);
   for (const auto& [text, limit] : {std::pair{"tmax", PrincipalStressLimit::Tmax},
                                     std::pair{"uniaxial_tensile_strength", PrincipalStressLimit::UniaxialTensileStrength}})
     EXPECT_EQ(load_afc_params(kAfc, kSdel, {std::string("options.principal_stress_limit=") + text})
@@ -85,6 +92,11 @@ TEST(AfcConfig, BadInputNamesFileKeyAndReason) {
   EXPECT_EQ(error_with({"options.tensile_damage=maybe"}),
             kAfc + ": key 'options.tensile_damage': value 'maybe' is not one of: sdel, off");
   EXPECT_EQ(error_with({"options.typo=1"}).rfind(kAfc + ": key 'options.typo': unknown key", 0), 0u);
+  EXPECT_EQ(error_with({"options.sdel_regularization=bazant"}),
+            kAfc + ": key 'options.sdel_regularization': value 'bazant' is not one of: lambda, crack_band");
+  EXPECT_EQ(error_with({"options.crack_band_reference_size_m=0"}).rfind(
+                kAfc + ": key 'options.crack_band_reference_size_m': value 0 is out of range", 0),
+            0u);
   EXPECT_EQ(error_with({"options.lode=mohr"}),
             kAfc + ": key 'options.lode': value 'mohr' is not one of: off, willam_warnke");
   EXPECT_EQ(error_with({"options.tensile_degradation=split", "options.principal_stress_limit=tmax"}),

@@ -1,0 +1,194 @@
+// The crack band regularization of the SDEL (AfcOptions::sdel_regularization = crack_band, afc_params.hpp;
+// docs/physics.md section 4.4, docs/studies/2026-12-06-crack-band.md) at a single material point: the
+// energy a band one particle wide dissipates per unit crack area, G = h W (W the work per volume to full
+// damage), at the five spacings 1.5 ... 6.0 mm, against the reference point's l_ref W_ref computed on its
+// own (the paper's lambda law at h = l_ref).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "allocation_counter.hpp"
+
+#include "materials/afc.hpp"
+#include "materials/afc_config.hpp"
+#include "materials/point_driver.hpp"
+#include "afc_point_tests.hpp"
+
+namespace uhpc::macro {
+namespace {
+
+using namespace afc_test;
+
+const std::vector<double> kSpacings = {0.0015, 0.00225, 0.003, 0.0045, 0.006};
+
+// The shipped law (cutoff coupling) or the SDEL alone (eq. 21's split with AFC's tensile limits lifted, so
+// that the stress is the microcells' (1 - d) E e), with the given regularization.
+AfcParams law_of(SdelRegularization r, bool sdel_alone) {
+  AfcParams p = shipped();
+  p.options.sdel_regularization = r;
+  if (sdel_alone) {
+    p.options.tensile_degradation = TensileDegradation::Split;
+    p.Tmax_Pa = 1e12;
+    p.C1_Pa = p.C2_Pa + 1e12;
+  }
+  return p;
+}
+
+// Failed: d+ within 1e-5 of 1 (the SDEL tends to 1; the energy left is below 0.2 % of G).
+constexpr double kFailed = 1.0 - 1e-5;
+
+// The work per volume of quasi-static uniaxial stress to full damage (trapezoid on the path).
+double uniaxial_stress_work(const AfcParams& p, double h) {
+  Driver pt{AfcMaterial(p), h};
+  const double de = 1e-7;
+  double work = 0.0, s_old = 0.0, e_old = 0.0;
+  for (int i = 0; i < 200000 && pt.state().d_plus < kFailed; ++i) {  // to a strain of 2e-2 at most
+    pt.uniaxial_stress_step(de, 1e-2);
+    const double s = pt.state().stress(0, 0), e = pt.total_strain()(0, 0);
+    work += 0.5 * (s + s_old) * (e - e_old);
+    s_old = s;
+    e_old = e;
+  }
+  EXPECT_GE(pt.state().d_plus, kFailed) << h;
+  return work;
+}
+
+// The same in uniaxial strain (the point laterally held): another stress path, the hydrostatic cutoff
+// binds and the lateral stresses do work on the lateral plastic strains.
+double uniaxial_strain_work(const AfcParams& p, double h) {
+  Driver pt{AfcMaterial(p), h};
+  Mat3 inc = Mat3::Zero();
+  inc(0, 0) = 1e-7;
+  double work = 0.0;
+  Mat3 before = Mat3::Zero();
+  for (int i = 0; i < 200000 && pt.state().d_plus < kFailed; ++i) {
+    pt.strain_step(inc, 1e-2);
+    work += 0.5 * (before + pt.state().stress).cwiseProduct(inc).sum();
+    before = pt.state().stress;
+  }
+  EXPECT_GE(pt.state().d_plus, kFailed) << h;
+  return work;
+}
+
+double spread(const std::vector<double>& g) {
+  return *std::max_element(g.begin(), g.end()) / *std::min_element(g.begin(), g.end()) - 1.0;
+}
+
+void print_row(const char* what, const std::vector<double>& g) {
+  std::printf("%-44s G = %7.3f %7.3f %7.3f %7.3f %7.3f J/m^2, spread %5.1f %%\n", what, g[0], g[1], g[2], g[3], g[4],
+              100 * spread(g));
+}
+
+TEST(AfcCrackBand, EnergyPerCrackAreaIsTheReferencesAtEverySpacingInUniaxialTension) {
+  // With the option every G is l_ref W_ref, the reference point's (the lambda law at h = l_ref, run on its
+  // own here): to 0.5 %, the trapezoid and the explicit damage of a 1e-7 strain step. The default's G
+  // (the paper's law) is printed beside it.
+  for (const bool sdel_alone : {false, true}) {
+    const double l_ref = AfcOptions{}.crack_band_reference_size_m;
+    const double g_ref = l_ref * uniaxial_stress_work(law_of(SdelRegularization::Lambda, sdel_alone), l_ref);
+    std::vector<double> band, paper;
+    for (const double h : kSpacings) {
+      band.push_back(h * uniaxial_stress_work(law_of(SdelRegularization::CrackBand, sdel_alone), h));
+      paper.push_back(h * uniaxial_stress_work(law_of(SdelRegularization::Lambda, sdel_alone), h));
+      EXPECT_NEAR(band.back(), g_ref, 5e-3 * g_ref) << (sdel_alone ? "SDEL alone" : "cutoff coupling") << ", h " << h;
+    }
+    std::printf("%s, reference l_ref %.1f mm: G_ref = %.3f J/m^2\n", sdel_alone ? "SDEL alone" : "cutoff coupling",
+                1e3 * l_ref, g_ref);
+    print_row("  sdel_regularization lambda (default)", paper);
+    print_row("  sdel_regularization crack_band", band);
+    EXPECT_LT(spread(band), 0.01);
+  }
+}
+
+TEST(AfcCrackBand, TheCutoffCouplingsEnergyDoesNotDependOnTheStressPath) {
+  // Laterally held (uniaxial strain), the band of every spacing still dissipates the reference's uniaxial
+  // tension energy: the crack band counts the energy the point dissipates, not a strain. (A crack band
+  // that stretches the crack strain instead, exact in uniaxial stress, spreads by 10 % here.)
+  const double l_ref = AfcOptions{}.crack_band_reference_size_m;
+  const double g_ref = l_ref * uniaxial_stress_work(law_of(SdelRegularization::Lambda, false), l_ref);
+  std::vector<double> band, paper;
+  for (const double h : kSpacings) {
+    band.push_back(h * uniaxial_strain_work(law_of(SdelRegularization::CrackBand, false), h));
+    paper.push_back(h * uniaxial_strain_work(law_of(SdelRegularization::Lambda, false), h));
+    EXPECT_NEAR(band.back(), g_ref, 5e-3 * g_ref) << h;
+  }
+  std::printf("uniaxial strain, cutoff coupling (G_ref %.3f J/m^2 of uniaxial stress):\n", g_ref);
+  print_row("  sdel_regularization lambda (default)", paper);
+  print_row("  sdel_regularization crack_band", band);
+}
+
+TEST(AfcCrackBand, NothingChangesBeforeTheOnsetOfTensileYielding) {
+  // Up to its peak (the onset of tensile yielding) a point of any spacing follows the reference point
+  // step for step: the same d+ (the reference SDEL of kappa) and the same stress (to the driver's 1e-3 Pa
+  // on the lateral stress), so the same peak.
+  const AfcMaterial reference(law_of(SdelRegularization::Lambda, false));
+  const double l_ref = reference.params().options.crack_band_reference_size_m;
+  for (const double h : kSpacings) {
+    const AfcMaterial band(law_of(SdelRegularization::CrackBand, false));
+    Driver a{reference, l_ref}, b{band, h};
+    int steps = 0;
+    for (; steps < 10000 && a.state().plastic_work == 0.0; ++steps) {
+      a.uniaxial_stress_step(1e-7, 1e-2);
+      b.uniaxial_stress_step(1e-7, 1e-2);
+      ASSERT_EQ(b.state().d_plus, a.state().d_plus) << h << " step " << steps;
+      ASSERT_LT((b.state().stress - a.state().stress).norm(), 1e-2) << h << " step " << steps;
+    }
+    EXPECT_GT(steps, 2000) << h;  // the onset is at a strain of about 2.6e-4
+    EXPECT_NEAR(a.state().d_plus, band.crack_band_onset(), 1e-2) << h;
+  }
+}
+
+TEST(AfcCrackBand, UnloadingAndCompressionDoNotDamage) {
+  // Into the softening, back to zero stress, and on into compression through crushing: d+ and the
+  // tensile work do not grow after the tension stops, and a fresh point crushed in compression gets no
+  // tensile work at all.
+  const AfcMaterial law(law_of(SdelRegularization::CrackBand, false));
+  Driver pt{law, 0.003};
+  for (int i = 0; i < 3200; ++i) pt.uniaxial_stress_step(1e-7, 1e-2);  // to 3.2e-4, past the peak
+  // d+ follows the work of the steps before (explicit): the first step back still takes the last
+  // loading step's.
+  pt.uniaxial_stress_step(-1e-7, 1e-2);
+  const double d = pt.state().d_plus, work = pt.state().tensile_work;
+  ASSERT_GT(d, law.crack_band_onset());
+  ASSERT_LT(d, 0.99);
+  for (int i = 0; i < 4000; ++i) pt.uniaxial_stress_step(-1e-7, 1e-2);
+  EXPECT_LT(pt.state().stress(0, 0), 0.0);
+  EXPECT_EQ(pt.state().d_plus, d);
+  EXPECT_EQ(pt.state().tensile_work, work);
+  Driver crushed{law, 0.003};
+  for (int i = 1; i <= 400; ++i) crushed.volumetric_step_to(0.04 * i / 400.0, 1.0);
+  ASSERT_GT(crushed.state().mu_max, law.params().C7);
+  EXPECT_EQ(crushed.state().tensile_work, 0.0);
+  EXPECT_LT(crushed.state().d_plus, law.crack_band_onset());
+}
+
+TEST(AfcCrackBand, UpdateAllocatesNothing) {
+  // The reference curve is built when the law is made; a step, through crushing and cracking, allocates
+  // nothing (as AfcAllocations checks for the other options).
+  for (const bool sdel_alone : {false, true}) {
+    const AfcMaterial law(law_of(SdelRegularization::CrackBand, sdel_alone));
+    AfcMaterial::State s;
+    MaterialStep step;
+    step.dt_s = 1e-7;
+    step.spacing_m = 0.0015;
+    const long before = uhpc::test::g_allocations.load();
+    double ratio = 1.0;
+    for (int i = 0; i < 3000; ++i) {
+      const double sign = i < 1000 ? -1.0 : 1.0;
+      step.strain_increment = Mat3::Zero();
+      step.strain_increment(0, 0) = sign * 4e-5;
+      step.strain_increment(0, 1) = step.strain_increment(1, 0) = 1e-5;
+      ratio *= std::exp(-step.strain_increment.trace());
+      step.density_ratio = ratio;
+      law.update(s, step);
+    }
+    EXPECT_EQ(uhpc::test::g_allocations.load() - before, 0) << sdel_alone;
+    EXPECT_GE(s.d_plus, kFailed) << sdel_alone;
+  }
+}
+
+}  // namespace
+}  // namespace uhpc::macro
