@@ -58,9 +58,11 @@ def material_density(config):
     """The target's density from the material file the run read (config.json's files, role material)."""
     for entry in config.get("files", []):
         if entry.get("role") == "material":
-            path = Path(entry["path"])
-            if path.is_file():
-                return json.loads(path.read_text()).get("density_kg_m3")
+            # As the program opened it: relative to where it ran, which for the shipped files is the
+            # repository root (this script's parent's parent) when not the directory this runs in.
+            for path in (Path(entry["path"]), Path(__file__).resolve().parent.parent / entry["path"]):
+                if path.is_file():
+                    return json.loads(path.read_text()).get("density_kg_m3")
     return None
 
 
