@@ -1,6 +1,7 @@
 // AfcMaterial::update allocates nothing (it runs inside the solver's particle loop): counted through
 // the global operator new of this test program, over elastic, plastic, crushing and cracking steps,
-// with both couplings of d+ (eq. 21's split and the cutoff) and both tensile strain measures.
+// with both couplings of d+ (eq. 21's split and the cutoff), both tensile strain measures and both
+// regularizations of the SDEL.
 #include <gtest/gtest.h>
 
 #include "allocation_counter.hpp"
@@ -14,9 +15,12 @@ namespace uhpc::macro {
 namespace {
 
 TEST(AfcAllocations, UpdateAllocatesNothing) {
+  // Also with the crack band, whose reference curve is built when the law is made, not in a step.
+  for (const SdelRegularization regularization : {SdelRegularization::Lambda, SdelRegularization::CrackBand})
   for (bool split : {false, true}) {
     AfcParams p = load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json");
     p.options.tensile_degradation = split ? TensileDegradation::Split : TensileDegradation::Cutoff;
+    p.options.sdel_regularization = regularization;
     p.strain_measure = split ? TensileStrainMeasure::EffectiveTensile : TensileStrainMeasure::Mazars;
     const AfcMaterial law(p);
     AfcMaterial::State s;
