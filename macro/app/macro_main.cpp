@@ -30,9 +30,10 @@ int main(int argc, char** argv) {
   app.add_flag("--inputs-hash", args.inputs_hash,
                "print the hash of this run's inputs (the case with --set, the files it reads: result.json's "
                "provenance.config_hash) and exit, writing nothing");
-  app.add_flag("--reuse", args.reuse,
+  auto* reuse = app.add_flag("--reuse", args.reuse,
                "keep a finished run already in OUT when its result.json was made from these inputs (the same "
                "provenance.config_hash); exit 2 when it was made from other inputs");
+  reuse->excludes(app.get_option("--restart"));
   uhpc::add_set_option(app, args.overrides);
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);

@@ -47,11 +47,19 @@ RunInputs run_inputs(const Config& cfg, const std::string& case_file, const std:
   r.record = {{"case_file", case_file}, {"overrides", overrides}, {"case", cfg.json()}, {"files", files},
               {"sdel", sdel}};
   // The case enters through its effective document (cfg, after --set), not its bytes: a note or the
-  // layout of the file does not make another run, a value does, in the file or by --set alike. The other
-  // files (constants, SDEL) enter through their bytes.
+  // layout of the file does not make another run, a value does, in the file or by --set alike. The
+  // material constants enter through their file's bytes; the SDEL through the values the law uses (its
+  // constants, l_mac, strain measure), not its bytes: a handoff fitted again to the same constants (a new
+  // date in its provenance, as `make paper` and the quickstart write it) makes no other run, and a
+  // handoff the law does not use makes none.
   std::string data_hashes;
   for (const auto& f : files)
-    if (f.at("role") != "case") data_hashes += f.at("fnv1a64").get<std::string>();
+    if (f.at("role") == "material") data_hashes += f.at("fnv1a64").get<std::string>();
+  if (!sdel.is_null()) {
+    nlohmann::json values = sdel;
+    values.erase("path");
+    data_hashes += fnv1a64_hex(values.dump());
+  }
   r.hash = fnv1a64_hex(cfg.hash() + data_hashes);
   nlohmann::json resumable = cfg.json();
   for (const char* key : kRestartMayChange) resumable.at("run").erase(key);

@@ -189,6 +189,15 @@ TEST_F(MacroApp, TheRunRecordsEveryFileItReadAndTheSdelItUsed) {
   EXPECT_EQ(config_b.at("files")[2].at("path"), other_path);
   EXPECT_EQ(config_b.at("sdel").at("A"), 3e-4);
   EXPECT_NE(result_b.at("provenance").at("config_hash"), result_a.at("provenance").at("config_hash"));
+  // The same constants in a handoff of other bytes (another source text, as a refit writes another date):
+  // the same run, so the same hash; its file hash differs.
+  std::string same = test::read_file(std::string(UHPC_DATA_DIR) + "/sdel_paper.json");
+  same.replace(same.find("\"source\": \""), 11, "\"source\": \"refitted: ");
+  const std::string same_path = (dir_ / "same_sdel.json").string();
+  std::ofstream(same_path) << same;
+  const auto [config_c, result_c] = run("same", same_path);
+  EXPECT_NE(config_c.at("files")[2].at("fnv1a64"), config_a.at("files")[2].at("fnv1a64"));
+  EXPECT_EQ(result_c.at("provenance").at("config_hash"), result_a.at("provenance").at("config_hash"));
 }
 
 // --inputs-hash prints what the run's result.json would carry as provenance.config_hash (the pipelines
@@ -223,9 +232,6 @@ TEST_F(MacroApp, InputsHashIsTheRunsConfigHashAndWritesNothing) {
   EXPECT_NE(hash_of(other), printed);
 }
 
-// A run its first stable step cannot finish within run.max_steps is refused before it starts (exit 2,
-// the estimate in the message): a density of 1e-300 gave a step of exactly 0 and a run that never
-// advanced while history.csv grew; a bulk modulus of 1e300 or a speed of 1e9 m/s, runs of days.
 // --reuse (the make rules' runs): a finished run of the same inputs is kept untouched, one of other
 // inputs is refused (exit 2) and left as it was, an unreadable result.json is refused too.
 TEST_F(MacroApp, ReuseKeepsARunOfTheSameInputsAndRefusesOneOfOthers) {
@@ -255,6 +261,9 @@ TEST_F(MacroApp, ReuseKeepsARunOfTheSameInputsAndRefusesOneOfOthers) {
   EXPECT_TRUE(std::filesystem::exists(dir_ / "run" / "history.csv"));
 }
 
+// A run its first stable step cannot finish within run.max_steps is refused before it starts (exit 2,
+// the estimate in the message): a density of 1e-300 gave a step of exactly 0 and a run that never
+// advanced while history.csv grew; a bulk modulus of 1e300 or a speed of 1e9 m/s, runs of days.
 TEST_F(MacroApp, ARunBeyondTheStepBudgetIsRefusedBeforeItStarts) {
   const auto refused = [&](const std::vector<std::string>& overrides) {
     MacroRunArgs args;
@@ -375,14 +384,9 @@ TEST_F(MacroApp, ASphereThatStopsInTheTargetIsEmbedded) {
   const double M = 9.071e-3, block = 0.048 * 0.048 * 0.016 * 2555.7, vz = r.at("residual_velocity_m_s").get<double>();
   EXPECT_LE(vz, (M * 100.0 - M * vz) / block + 0.05);
   EXPECT_LT(r.at("end_time_s").get<double>(), r.at("outcome_time_s").get<double>() + 2.5e-6);
-  // Whichever rule decided it holds at the outcome: at rest (above), or the sphere's kinetic energy within
-  // the run's worst energy-balance error (a share of the impact energy).
-  const std::string by = r.at("embedded_by").get<std::string>();
-  std::printf("embedded by %s; worst energy balance error %.3e of the impact energy, sphere's energy %.3e\n",
-              by.c_str(), r.at("energy").at("worst_balance_error").get<double>(), (vz * vz) / (100.0 * 100.0));
-  ASSERT_TRUE(by == "at_rest" || by == "within_energy_resolution") << by;
-  if (by == "within_energy_resolution")
-    EXPECT_LE(vz * vz / (100.0 * 100.0), r.at("energy").at("worst_balance_error").get<double>());
+  // It came to rest with the block (the rule of the energy resolution is tested on states set by hand,
+  // unit.MacroImpactOutcome).
+  EXPECT_EQ(r.at("embedded_by"), "at_rest");
 }
 
 // The impact geometry. A normal impact on the axis starts exactly where and as fast as before the
