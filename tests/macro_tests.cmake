@@ -39,4 +39,5 @@ uhpc_add_test(unit unit/test_macro_shot_comparison.cpp uhpc_macro_shots)
 uhpc_add_test(unit unit/test_macro_checkpoint.cpp uhpc_macro_app)
 uhpc_add_test(unit unit/test_macro_run_warnings.cpp uhpc_macro_app)
 uhpc_add_test(unit unit/test_macro_panel_damage.cpp uhpc_macro_app)
+uhpc_add_test(unit unit/test_macro_impact_outcome.cpp uhpc_macro_app)
 add_dependencies(unit_test_macro_checkpoint uhpc-macro)  # the restart test runs the program

@@ -96,10 +96,13 @@ const char* to_string(EmbeddedBy reason) {
 }
 
 void ImpactTracker::update(const ExplicitSolver& s, double worst_energy_error) {
+  decide(s.sphere(), s.ledger(), s.contact().particles_in_contact, s.time(), worst_energy_error);
+}
+
+void ImpactTracker::decide(const RigidSphere& sp, const EnergyLedger& e, std::int64_t particles_in_contact,
+                           double time_s, double worst_energy_error) {
   if (decided()) return;
-  const RigidSphere& sp = s.sphere();
-  const EnergyLedger& e = s.ledger();
-  const bool free = s.contact().particles_in_contact == 0;
+  const bool free = particles_in_contact == 0;
   const double target_vz = (e.momentum[2] - e.momentum_sphere[2]) / target_mass_kg;
   // Perforated once the sphere's centre has crossed the exit face and no particle pushes it: from
   // there on it flies free (its rear needs another radius of travel, up to 25 us at the lowest
@@ -117,7 +120,7 @@ void ImpactTracker::update(const ExplicitSolver& s, double worst_energy_error) {
   } else {
     return;
   }
-  outcome_time_s = s.time();
+  outcome_time_s = time_s;
   const Vec3& d = flight_direction;
   residual_velocity_m_s = sp.v[0] * d[0] + sp.v[1] * d[1] + sp.v[2] * d[2];
   residual_speed_m_s = std::sqrt(sp.v[0] * sp.v[0] + sp.v[1] * sp.v[1] + sp.v[2] * sp.v[2]);

@@ -82,9 +82,9 @@ const char* to_string(EmbeddedBy reason);
 //   embedded    its centre is past the entry face and it has stopped: relative to the target (axial
 //               velocity <= that of the target's centre of mass), or its kinetic energy has fallen below
 //               the run's worst energy-balance error so far (what is left of its motion is below what the
-//               run resolves: a sphere drifting at 0.2 % of its impact speed in its crater, or carried at
-//               1.4 % by the shear cone that it pushes out of the rear face, is not a perforation the run
-//               can tell);
+//               run resolves: a sphere drifting at 0.27 % of its impact speed in its crater, or carried at
+//               1.9 % by the shear cone that it pushes out of the rear face; a convention, docs/physics.md
+//               section 5.8);
 //   rebounded   it is back out of the entry face, moving back, and no particle pushes it (a sphere
 //               that stops before its centre has passed the entry face is followed until then);
 //   undecided   none of these by the end time (reported, never taken for a perforation).
@@ -107,6 +107,9 @@ struct ImpactTracker {
   // `worst_energy_error`: the run's worst energy-balance error so far, a share of the impact energy
   // (BalanceTracker::worst_energy, updated before this).
   void update(const ExplicitSolver& solver, double worst_energy_error);
+  // The same from the state it reads: the sphere, the energy books, how many particles touch the sphere.
+  void decide(const RigidSphere& sphere, const EnergyLedger& ledger, std::int64_t particles_in_contact,
+              double time_s, double worst_energy_error);
   bool decided() const { return outcome != ImpactOutcome::Undecided; }
   bool perforated() const { return outcome == ImpactOutcome::Perforated; }
   bool rebounded() const { return outcome == ImpactOutcome::Rebounded; }
