@@ -111,7 +111,8 @@ def sweep(args):
     if undecided:
         md.append(f"{len(undecided)} run(s) undecided at their end time (no residual velocity; left out of the fit): "
                   + ", ".join(f"{r['impact_velocity_m_s']:g}" for r in undecided)
-                  + " m/s. Lengthen run.end_time_s (SHOT_SET) to decide them.")
+                  + " m/s. Carry them on with uhpc-macro --restart --set run.end_time_s=<later> in their"
+                  " directories (or a later end time in SHOT_SET with another OUT) to decide them.")
     md += ["", "Lambert-Jonas fits, vr = a (v^p - v_bl^p)^(1/p):", "", lj.fit_markdown(fits)]
     (out / "sweep.md").write_text("\n".join(md))
     (out / "sweep.json").write_text(json.dumps({"runs": rows, "fits": fits,

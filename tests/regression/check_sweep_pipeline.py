@@ -100,9 +100,18 @@ def main():
     exp = fits["experiments"]
     check(exp["points"] == 7 and exp["rms_m_s"] < 30.0, f"the experiments' fit: 7 points, RMS {exp['rms_m_s']:.1f}")
 
-    # Resumable: a second make sweep runs no shot.
-    dry = subprocess.run(make + ["-n", "sweep"], env=env, capture_output=True, text=True)
-    check(dry.returncode == 0 and "uhpc-macro" not in dry.stdout, "a second make sweep runs no shot")
+    # Resumable: a second make sweep keeps every run made from the same inputs (uhpc-macro --reuse: their
+    # files untouched) and refuses one made from other inputs (exit 2, naming it) without touching it.
+    runs = sorted(sweep.glob("v*/result.json"))
+    before = {r: (r.read_bytes(), (r.parent / "history.csv").stat().st_mtime_ns) for r in runs}
+    again = subprocess.run(make + ["sweep"], env=env, capture_output=True, text=True)
+    check(again.returncode == 0 and all((r.read_bytes(), (r.parent / "history.csv").stat().st_mtime_ns) == before[r]
+                                        for r in runs), f"a second make sweep keeps its {len(runs)} runs untouched")
+    other = [a if not a.startswith("SHOT_SET=") else "SHOT_SET=--set run.end_time_s=5e-4" for a in make]
+    refused = subprocess.run(other + ["sweep"], env=env, capture_output=True, text=True)
+    check(refused.returncode != 0 and "made from other inputs" in refused.stderr
+          and all(r.read_bytes() == before[r][0] for r in runs),
+          "make sweep with another SHOT_SET stops, naming a run made from other inputs, and changes nothing")
 
     # The thickness study: 2 thicknesses, the 31.75 mm runs are the sweep's.
     t = json.loads((out / "thickness" / "thickness.json").read_text())
