@@ -86,7 +86,9 @@ def cell_table(directory: Path, summary: dict) -> str:
     for s in summary["sizes"]:
         cells = [json.loads((directory / s["directory"] / f"cell_{r:02d}" / "summary.json").read_text())
                  for r in range(len(s["seeds"]))]
-        status = ", ".join(f"{n} {k}" for k, n in sorted(Counter(c["status"] for c in cells).items()))
+        # step_limit is the earlier name of reached_end (the archived cells).
+        status = ", ".join(f"{n} {k}" for k, n in sorted(Counter(
+            "reached_end" if c["status"] == "step_limit" else c["status"] for c in cells).items()))
         wall = [c["wall_s"] for c in cells]
         balance = [abs(c["energy_balance_relative"]) for c in cells if c["energy_balance_relative"] is not None]
         balance_text = f"{median(balance):.1e} / {max(balance):.1e}" if balance else "-"

@@ -134,8 +134,10 @@ def fit_row(study, method, f, fixed_p):
     notes = []
     if not f.get("v_bl_bracketed", True):
         notes.append("extrapolated (every run perforated)")
-    if dof <= 0:
-        notes.append(f"exact: {f['points']} runs, {f['points'] - dof} constants")
+    if dof == 0:
+        notes.append(f"exact: {f['points']} runs, {f['points']} constants")
+    elif dof < 0:
+        notes.append(f"underdetermined: {f['points']} runs, {f['points'] - dof} constants")
     if f.get("p_at_search_edge"):
         notes.append("p at its search edge")
     interval = f"[{ci[0]:.0f}, {ci[1]:.0f}] (bootstrap 95 %)" if ci else ""

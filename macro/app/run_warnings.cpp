@@ -25,8 +25,8 @@ std::vector<RunWarning> warnings_before_run(const CaseSettings& settings) {
 WallTimeEstimate estimate_wall_time(std::size_t particles, double remaining_s, double first_step_s, int threads) {
   const double steps = remaining_s / first_step_s;
   const double seconds = static_cast<double>(particles) * steps / (kParticleStepsPerThreadPerSecond * threads);
-  return {seconds, fmt::format("estimated wall time about {:.0f} min ({:.3g} steps of {} particles on {} thread(s) at "
-                               "about {:.2g} particle-steps/s a thread; the step may shrink)",
+  return {seconds, fmt::format("estimated wall time up to the end time about {:.0f} min ({:.3g} steps of {} particles "
+                               "on {} thread(s) at about {:.2g} particle-steps/s a thread; a decided shot stops sooner)",
                                seconds / 60.0, steps, particles, threads, kParticleStepsPerThreadPerSecond)};
 }
 

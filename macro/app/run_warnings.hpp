@@ -36,8 +36,10 @@ std::vector<RunWarning> warnings_after_run(const EnergyLedger& ledger);
 
 // The wall time a run will take, said before it starts (a 500 mm slab once ran 8 minutes with nothing
 // said up front; the progress line's ETA follows the real rate once the run is going): the steps left
-// at the first stable step times the particles, at kParticleStepsPerThreadPerSecond a thread. A floor
-// more than a bound: the step shrinks as the target is crushed, and two threads give less than twice one.
+// at the first stable step times the particles, at kParticleStepsPerThreadPerSecond a thread, up to the
+// end time: a shot decided earlier stops 10 us after its outcome (ten times sooner for a fast
+// perforation); the step shrinking as the target is crushed, or two threads giving less than twice one,
+// make it longer.
 struct WallTimeEstimate {
   double seconds = 0.0;
   std::string message;  // the estimate with what it is made of

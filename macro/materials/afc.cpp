@@ -142,12 +142,13 @@ void AfcMaterial::build_crack_band_curve() {
   AfcParams ref = p_;
   ref.options.sdel_regularization = SdelRegularization::Lambda;
   ref.options.tensile_rate = TensileRate::Off;
+  ref.options.rate_factor_floor = 1.0;  // F = 1 at the driver's slow rate, whatever floor the case sets
   const double l_ref = p_.options.crack_band_reference_size_m;
   AfcMaterial reference(ref);
   reference.track_tensile_work_ = true;
   PointDriver<AfcMaterial> pt(reference, l_ref);
   std::vector<double> d, w;  // from the onset on (construction only)
-  const double de = 1e-7, dt = 1e3;  // a rate far below edot0: F = its floor
+  const double de = 1e-7, dt = 1e3;  // a rate far below edot0: F = its floor, 1 (above)
   for (int i = 0; i < 1000000 && pt.state().d_plus < 1.0; ++i) {
     const double booked = pt.state().plastic_work + pt.state().opening_work;
     pt.uniaxial_stress_step(de, dt);

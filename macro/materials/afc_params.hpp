@@ -144,7 +144,7 @@ struct AfcOptions {
   // [choice] l_ref of SdelRegularization::CrackBand: 6.5 mm, the largest microcell size the SDEL was
   // calibrated at (no extrapolation in lambda, the most representative cell), so every spacing of the
   // shipped cases (1.5-4.5 mm; the coarse disc's 6-9 mm) is at or below the 1.4 l_ref the crack band holds
-  // to. G = 13.6 J/m^2 with the paper's SDEL and the cutoff coupling, 10.5 J/m^2 for the SDEL alone.
+  // to with the cutoff coupling (with the split, up to l_ref). G = 13.6 J/m^2 with the paper's SDEL and the cutoff coupling, 10.5 J/m^2 for the SDEL alone.
   double crack_band_reference_size_m = 0.0065;
   // Verification switch (not a modelling choice of the paper): TensileDamage::Off keeps d+ = 0.
   TensileDamage tensile_damage = TensileDamage::Sdel;
