@@ -178,8 +178,8 @@ def ballistic_limit_rows(root):
     return rows
 
 
-def provenance_rows(root):
-    rows = []
+def macro_results(root):
+    """Every uhpc-macro result.json under root (the report's own folder left out): (path, document)."""
     for res in sorted(root.rglob("result.json")):
         if "report" in res.relative_to(root).parts:
             continue
@@ -187,9 +187,36 @@ def provenance_rows(root):
             r = json.loads(res.read_text())
         except (OSError, ValueError):
             continue
-        prov, inputs = r.get("provenance", {}), r.get("inputs", {})
-        if not prov or "impact_velocity_m_s" not in r:
+        if r.get("provenance") and "impact_velocity_m_s" in r:
+            yield res, r
+
+
+def mm(value):
+    return "" if value is None else f"{1e3 * value:.1f}"
+
+
+def panel_rows(root):
+    """One table row per run: what a test engineer measures on the panel (result.json `panel`)."""
+    rows = []
+    for res, r in macro_results(root):
+        panel = r.get("panel")
+        if not panel:
             continue
+        plug = panel.get("plug", {})
+        plug_text = f"{1e3 * plug['mass_kg']:.1f} g at {plug['velocity_m_s']:.1f} m/s" if plug.get("particles") else ""
+        residual = r.get("residual_velocity_m_s")
+        rows.append(f"| {rel(res.parent, root)} | {r['impact_velocity_m_s']:.0f} | {r.get('outcome')} | "
+                    f"{'' if residual is None else f'{residual:.1f}'} | "
+                    f"{mm(panel.get('front_crater_diameter_m'))} / {mm(panel.get('front_crater_depth_m'))} | "
+                    f"{mm(panel.get('rear_scab_diameter_m'))} / {mm(panel.get('rear_scab_depth_m'))} | "
+                    f"{mm(panel.get('hole_diameter_m'))} | {plug_text} | {mm(panel.get('rear_face_deflection_m'))} |")
+    return rows
+
+
+def provenance_rows(root):
+    rows = []
+    for res, r in macro_results(root):
+        prov, inputs = r.get("provenance", {}), r.get("inputs", {})
         files = "; ".join(f"{f.get('role')}: {f.get('path')} ({f.get('fnv1a64')})" for f in inputs.get("files", []))
         rows.append({"run": rel(res.parent, root), "program": prov.get("program"), "version": prov.get("version"),
                      "commit": prov.get("git_commit"), "config_hash": prov.get("config_hash"),
@@ -280,6 +307,19 @@ def main():
         p.add("", "| study | method | v_bl m/s | interval | runs | notes |", "|---|---|---|---|---|---|", *estimates)
     else:
         p.add("", "No ballistic-limit estimate under the folder.")
+
+    p.add("", "## The panel after each run", "",
+          "What a test engineer measures (result.json `panel`, macro/README.md): the front crater's and the rear "
+          "scab's diameter (face-layer particles that moved more than half their spacing) and depth (how deep the "
+          "material now out of the face came from), the narrowest clear opening along the shot line, the plug that "
+          "leaves with the sphere, and the rear face's deflection at the shot line (+: the sphere's way; none for a "
+          "perforated panel). At the run's end time, so a crater may still be growing.")
+    panels = panel_rows(root)
+    if panels:
+        p.add("", "| run | v0 m/s | outcome | residual m/s | crater diameter / depth mm | scab diameter / depth mm | "
+              "hole mm | plug | rear deflection mm |", "|---|---|---|---|---|---|---|---|---|", *panels)
+    else:
+        p.add("", "No uhpc-macro run under the folder.")
 
     p.add("", "## Warnings of the runs", "",
           "What each run said about its own numbers (result.json `warnings`, macro/README.md): a target too few "

@@ -302,8 +302,10 @@ void run_macro(const MacroRunArgs& args) {
   history.save(args.out / "history.csv");
   nlohmann::json result = result_json(solver, impact, balance, material.model, wall, provenance, fields.steps_written());
   result["inputs"] = inputs_summary(inputs);
-  result["panel"] = panel_json(panel_damage(solver.particles(), body.position, settings.target.thickness_m(),
-                                            settings.projectile.offset_m, solver.sphere().v[2]));
+  const Vec3 flight = flight_direction(settings.projectile);
+  const ShotOnPanel shot{settings.target.thickness_m(), settings.projectile.offset_m, flight[0] / flight[2],
+                         settings.projectile.radius_m, solver.sphere().v[2], impact.perforated()};
+  result["panel"] = panel_json(panel_damage(solver.particles(), body.position, shot));
   for (RunWarning& w : warnings_after_run(solver.ledger())) {
     spdlog::warn("{}", w.message);
     warnings.push_back(std::move(w));

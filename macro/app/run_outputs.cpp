@@ -186,6 +186,9 @@ nlohmann::json panel_json(const PanelDamage& panel) {
           {"rear_scab_diameter_m", panel.rear_scab_diameter_m},
           {"front_crater_depth_m", panel.front_crater_depth_m},
           {"rear_scab_depth_m", panel.rear_scab_depth_m},
+          {"hole_diameter_m", panel.hole_diameter_m},
+          {"rear_face_deflection_m", panel.rear_face_deflection_m ? nlohmann::json(*panel.rear_face_deflection_m)
+                                                                  : nlohmann::json(nullptr)},
           {"front_ejecta", debris(panel.front_ejecta)},
           {"rear_ejecta", debris(panel.rear_ejecta)},
           {"plug_speed_share", kPlugSpeedShare},

@@ -154,6 +154,13 @@ def main():
     check("| sweep/t0.03175 | Lambert-Jonas, p free |" in estimates and "| sweep/t0.03175 | Lambert-Jonas, p = 1 |"
           in estimates and "| Lambert-Jonas, p = 2 |" in estimates and "exact: 2 runs, 2 constants" in estimates,
           "the report's ballistic-limit table labels each estimate with its study and method")
+    # The panel of every run, in the run's own figures (a perforated 1112 m/s shot: a hole, no deflection).
+    panels = page.split("## The panel after each run")[-1].split("## Warnings")[0]
+    fast = json.loads((sweep / "v1112" / "result.json").read_text())
+    hole_mm = 1e3 * fast["panel"]["hole_diameter_m"]
+    check(fast["outcome"] == "perforated" and hole_mm > 0.0 and fast["panel"]["rear_face_deflection_m"] is None
+          and f"| sweep/t0.03175/v1112 | 1112 | perforated | {fast['residual_velocity_m_s']:.1f} |" in panels
+          and f"| {hole_mm:.1f} |" in panels, f"the report shows each run's panel (1112 m/s: hole {hole_mm:.1f} mm)")
     fit = json.loads((out / "calibrate" / "fit_report.json").read_text())["sdel"]
     check(f"| A | {fit['constants']['A']:.4g} | {fit['standard_errors']['A']:.3g} |" in page
           and "| 0.0002 |" in page, "the calibration shows the fitted A with its standard error beside Table 4's")
