@@ -33,6 +33,19 @@ namespace uhpc::macro {
 
 namespace {
 
+nlohmann::json beyond_domain_json(const Particles& p, const Region& domain) {
+  std::int64_t count = 0;
+  double mass = 0.0, kinetic = 0.0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (domain.contains(p.x.data() + 3 * i)) continue;
+    const double* v = p.v.data() + 3 * i;
+    ++count;
+    mass += p.mass[i];
+    kinetic += 0.5 * p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
+  return {{"particles", count}, {"mass_kg", mass}, {"kinetic_J", kinetic}};
+}
+
 nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact, const BalanceTracker& balance,
                            const std::string& model, double wall_s, const Provenance& provenance,
                            std::size_t field_steps) {
@@ -67,6 +80,8 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
            : 0.0},
       // Particles moving as rigid fragments at the end (ShapeCache::fragment, solver.fragment_rcond).
       {"fragment_particles", s.shapes().fragments()},
+      // Ejecta in flight beyond the domain box at the end (SolverOptions::domain).
+      {"beyond_domain", beyond_domain_json(s.particles(), s.domain())},
       {"energy",
        {{"initial_kinetic_J", s.ledger().kinetic_initial},
         {"final_kinetic_J", s.ledger().kinetic},

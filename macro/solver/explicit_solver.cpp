@@ -214,9 +214,9 @@ void ExplicitSolver::compute_accelerations(double dt) {
       s.x[d] += dt * s.v[d];
     }
   }
-  // A position that is not finite or outside the domain fails the step (attempt() names it); stop
-  // here, before the neighbour search meets it.
-  if (first_non_finite(p_) >= 0 || first_outside(p_, domain_) >= 0) return;
+  // A position that is not finite or, when the domain is the guard, outside it fails the step (attempt()
+  // names it); stop here, before the neighbour search meets it.
+  if (first_non_finite(p_) >= 0 || (domain_is_guard() && first_outside(p_, domain_) >= 0)) return;
   const StrainConfiguration config = options_.strain_configuration;
   const bool nsni = second_options() != nullptr;
   if (config == StrainConfiguration::EndpointAverage) {
@@ -458,7 +458,7 @@ StepFailure ExplicitSolver::attempt(double h) {
   } else if (inverted_ >= 0) {
     kind = StepFailure::InvertedVolume;
     particle = inverted_;
-  } else if ((particle = first_outside(p_, domain_)) >= 0) {
+  } else if (domain_is_guard() && (particle = first_outside(p_, domain_)) >= 0) {
     kind = StepFailure::OutOfDomain;
   } else if (options_.energy_error_limit > 0 && energy_error_ratio(ledger_) > options_.energy_error_limit) {
     kind = StepFailure::EnergyBalance;

@@ -93,8 +93,12 @@ struct SolverOptions {
   // A step whose energy balance error exceeds this fraction of the energy put in fails the run
   // (StepFailure::EnergyBalance; 0 switches the check off). Sound runs stay below 2e-3.
   double energy_error_limit = 0.05;
-  // Particles must stay inside this box; unset: the bounding box of the particles and the sphere at
-  // initialize(), grown on every side by domain_margin times its largest extent.
+  // The domain box; unset: the bounding box of the particles and the sphere at initialize(), grown on
+  // every side by domain_margin times its largest extent. While the energy balance is checked, a
+  // particle beyond it is an ejecta in flight (far from the target, it carries its momentum and energy
+  // unchanged, in the books; a blow-up shows in the balance first) and the run goes on. With the check
+  // off (energy_error_limit = 0) the domain is the guard of last resort: a particle beyond it fails the
+  // step (StepFailure::OutOfDomain).
   std::optional<Region> domain;
   double domain_margin = 1.0;
 };
@@ -159,6 +163,8 @@ class ExplicitSolver {
   std::int64_t step_repeats() const { return repeats_; }  // repeats by the step-collapse guard, whole run
   double last_dt() const { return last_dt_; }             // the step actually taken by the last step()
   const Region& domain() const { return domain_; }
+  // Whether a particle beyond the domain fails the step (SolverOptions::domain).
+  bool domain_is_guard() const { return options_.energy_error_limit <= 0.0; }
   bool has_sphere() const { return sphere_.has_value(); }
   const RigidSphere& sphere() const { return *sphere_; }  // requires has_sphere()
   const SphereContactSums& contact() const { return contact_; }  // last force evaluation
