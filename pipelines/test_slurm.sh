@@ -138,7 +138,7 @@ MAKE_ARGS=(-C "$ROOT/pipelines" -o build -o configure -o macro-tools -o micro-to
 cd "$S"
 
 # --- the sweep: three coarse shots and a short bisection -------------------------------------------
-SWEEP=(SHOT_CASE="$ROOT/data/macro_disc_afc_coarse.json" BL_LOW=600 BL_HIGH=900 BL_WIDTH=150 BL_END_TIME_S=2e-4)
+SWEEP=(SHOT_CASE="$ROOT/data/macro_disc_afc_coarse.json" BL_LOW=600 BL_HIGH=900 BL_WIDTH=150 BL_END_TIME_S=2e-4 BL_MAX_END_TIME_S=2e-4)
 VELOCITIES=(610 817 1112)
 shot_targets() { for v in "${VELOCITIES[@]}"; do echo "$1/shots/v$v/result.json"; done; }
 before=$(steps)

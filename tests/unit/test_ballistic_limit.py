@@ -4,7 +4,8 @@ known limit (237 m/s): the bracket must contain it to the stated width, each vel
 listed once; a run that fails inside the bracket is recorded and bisected around (not rerun on resume),
 one at an end of the bracket stops it; too many failures report the bracket reached (exit 1); a resume
 reuses a run only if it was made from the same inputs (exit 2 otherwise); a run killed without a
-diagnostic stops the bisection (exit 3); nothing perforating up to --max-velocity stops it (exit 1)."""
+diagnostic stops the bisection (exit 3); nothing perforating up to --max-velocity stops it (exit 1); a run
+undecided at its end time is carried on from its checkpoint up to --max-end-time, and recognised on resume."""
 import json
 import pathlib
 import subprocess
@@ -15,19 +16,26 @@ SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "pipelines" / "ballistic_
 
 # The stand-in reads --out and projectile.velocity_m_s like uhpc-macro, counts its runs, and writes
 # config.json (the inputs' hash) and a result.json: perforated at and above LIMIT, embedded below; at a
-# velocity of FAIL_AT, config.json and diagnostic.json and exit 1. --inputs-hash prints the hash of its
-# arguments but --out and -q, as uhpc-macro prints the hash of its inputs.
+# velocity of FAIL_AT, config.json and diagnostic.json and exit 1. At a velocity of UNDECIDED the sphere is
+# decided only at DECIDE_TIME: a run ending earlier is undecided and keeps a checkpoint.h5, which --restart
+# (exit 2 without one) carries on. --inputs-hash prints the hash of its arguments but --out, -q and
+# --restart, as uhpc-macro prints the hash of its inputs (the end time among them).
 STAND_IN = """#!{python}
 import hashlib, json, pathlib, sys
 a = sys.argv[1:]
-inputs = [s for i, s in enumerate(a) if s not in ("-q", "--out", "--inputs-hash") and (i == 0 or a[i - 1] != "--out")]
+inputs = [s for i, s in enumerate(a) if s not in ("-q", "--out", "--inputs-hash", "--restart")
+          and (i == 0 or a[i - 1] != "--out")]
 h = hashlib.sha1(" ".join(inputs).encode()).hexdigest()[:16]
 if "--inputs-hash" in a:
     print(h)
     sys.exit(0)
 out = pathlib.Path(a[a.index("--out") + 1])
 v = [int(float(s.split("=")[1])) for s in a if s.startswith("projectile.velocity_m_s=")][0]
-calls = out.parent / "calls.txt"
+end = [float(s.split("=")[1]) for s in a if s.startswith("run.end_time_s=")][0]
+restart = "--restart" in a
+if restart and not (out / "checkpoint.h5").exists():
+    sys.exit(2)
+calls = out.parent / ("restarts.txt" if restart else "calls.txt")
 calls.write_text((calls.read_text() if calls.exists() else "") + f"{{v}}\\n")
 out.mkdir(parents=True, exist_ok=True)
 (out / "config.json").write_text(json.dumps({{"hash": h}}))
@@ -37,22 +45,34 @@ if v in {fail_at}:
 if v in {kill_at}:
     sys.exit(137)
 p = v >= {limit}
+if v in {undecided} and end < {decide_time}:
+    (out / "checkpoint.h5").write_text("")
+    (out / "result.json").write_text(json.dumps({{"outcome": "undecided", "perforated": False,
+        "residual_velocity_m_s": None, "final_velocity_m_s": 5.0, "end_time_s": end, "provenance": {{"config_hash": h}}}}))
+    sys.exit(0)
 (out / "result.json").write_text(json.dumps({{"outcome": "perforated" if p else "embedded", "perforated": p,
     "residual_velocity_m_s": 0.2 * v if p else None, "final_velocity_m_s": 0.2 * v if p else 0.0,
-    "end_time_s": 1e-3, "provenance": {{"config_hash": h}}}}))
+    "end_time_s": {decide_time} if v in {undecided} else 1e-3, "provenance": {{"config_hash": h}}}}))
 """
 
 
-def bisect(tmp, low, high, fail_at=(), end_time="1e-3", kill_at=(), limit=237):
+def bisect(tmp, low, high, fail_at=(), end_time="1e-3", kill_at=(), limit=237, undecided=(), decide_time=3e-3,
+           max_end_time=None):
     macro = pathlib.Path(tmp) / "macro.py"
-    macro.write_text(STAND_IN.format(python=sys.executable, limit=limit, fail_at=list(fail_at), kill_at=list(kill_at)))
+    macro.write_text(STAND_IN.format(python=sys.executable, limit=limit, fail_at=list(fail_at), kill_at=list(kill_at),
+                                     undecided=list(undecided), decide_time=decide_time))
     macro.chmod(0o755)
     out = pathlib.Path(tmp) / "bl"
+    extend = ["--max-end-time", max_end_time] if max_end_time else []
     done = subprocess.run([sys.executable, str(SCRIPT), "--macro", str(macro), "--config", "case.json",
-                           "--low", str(low), "--high", str(high), "--width", "10", "--end-time", end_time,
+                           "--low", str(low), "--high", str(high), "--width", "10", "--end-time", end_time, *extend,
                            "--out", str(out)], capture_output=True, text=True)
     calls = (out / "calls.txt").read_text().split() if (out / "calls.txt").exists() else []
     return done, out, [int(c) for c in calls]
+
+
+def restarts(out):
+    return [int(c) for c in (out / "restarts.txt").read_text().split()] if (out / "restarts.txt").exists() else []
 
 
 def check(condition, message):
@@ -111,7 +131,33 @@ def main():
         done, out, calls = bisect(tmp, 200, 300, limit=10**6)
         check(done.returncode == 1 and "nothing perforates up to" in done.stderr and max(calls) <= 3000,
               f"{done.returncode} {max(calls)} {done.stderr}")
-    print("ballistic_limit.py: bracket, widening, resume, reuse check and failures as documented")
+    with tempfile.TemporaryDirectory() as tmp:  # runs undecided until 3 ms, carried on to 4 ms: decided
+        done, out, calls = bisect(tmp, 200, 300, undecided=[232, 238], max_end_time="4e-3")
+        check(done.returncode == 0, done.stderr)
+        s = json.loads((out / "ballistic_limit.json").read_text())
+        check(calls == [200, 300, 250, 225, 238, 232] and restarts(out) == [238, 238, 232, 232],
+              f"runs {calls}, carried on {restarts(out)} (each 1 -> 2 -> 4 ms)")
+        band = {r["velocity_m_s"]: r for r in s["runs"] if r["velocity_m_s"] in (232, 238)}
+        check(band[238]["outcome"] == "perforated" and band[232]["outcome"] == "embedded"
+              and all(r["carried_on"] and r["end_time_s"] == 3e-3 for r in band.values())
+              and s["undecided_runs_m_s"] == [] and (s["highest_not_perforating_m_s"], s["lowest_perforating_m_s"])
+              == (232, 238), f"decided by carrying on: {s}")
+        check("Carried on past 1000 us because undecided there: [238, 232]" in (out / "ballistic_limit.md").read_text(),
+              "the report says which runs were carried on")
+        done, out, again = bisect(tmp, 200, 300, undecided=[232, 238], max_end_time="4e-3")  # resume: nothing run
+        check(done.returncode == 0 and again == calls and restarts(out) == [238, 238, 232, 232],
+              f"resume reran: {again}, {restarts(out)}")
+    with tempfile.TemporaryDirectory() as tmp:  # carried on only to 2 ms: still undecided, counted as not perforating
+        done, out, calls = bisect(tmp, 200, 300, undecided=[238], max_end_time="2e-3")
+        s = json.loads((out / "ballistic_limit.json").read_text())
+        check(done.returncode == 0 and restarts(out) == [238] and s["undecided_runs_m_s"] == [238]
+              and s["highest_not_perforating_m_s"] >= 238
+              and "Undecided at 2000 us (counted as not perforating): [238]" in (out / "ballistic_limit.md").read_text(),
+              f"{done.returncode} {restarts(out)} {s}")
+    with tempfile.TemporaryDirectory() as tmp:  # without --max-end-time no run is carried on
+        done, out, calls = bisect(tmp, 200, 300, undecided=[238])
+        check(done.returncode == 0 and restarts(out) == [], f"{restarts(out)}")
+    print("ballistic_limit.py: bracket, widening, resume, reuse check, failures and carrying on as documented")
 
 
 if __name__ == "__main__":
