@@ -68,6 +68,8 @@ RunSettings read_run(const Config& r) {
   RunSettings s;
   s.end_time_s = r.number("end_time_s", Range::positive());
   s.output_interval_steps = r.integer("output_interval_steps", Range::at_least(1));
+  // Optional, an output choice only: a case written before it keeps its hash and its files.
+  if (r.has("fields")) s.fields = r.choice("fields", {"standard", "full"}) == "full" ? FieldSet::Full : FieldSet::Standard;
   s.stop_after_outcome_s = r.number("stop_after_outcome_s", Range::any());
   s.max_steps = r.integer("max_steps", Range::at_least(1));
   s.max_particles = r.integer("max_particles", Range::closed(1, 2147483647.0));

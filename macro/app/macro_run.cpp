@@ -231,8 +231,10 @@ void run_macro(const MacroRunArgs& args) {
   for (const RunWarning& w : warnings) spdlog::warn("{}", w.message);
 
   std::optional<FieldOutput> field_output;
-  if (resumed) field_output.emplace(args.out, solver.material(), resumed->fields);
-  else field_output.emplace(args.out, solver.material());
+  std::optional<FullFields> full;
+  if (settings.run.fields == FieldSet::Full) full = FullFields{&body.position};
+  if (resumed) field_output.emplace(args.out, solver.material(), resumed->fields, full);
+  else field_output.emplace(args.out, solver.material(), full);
   FieldOutput& fields = *field_output;
   fields.write_provenance(provenance);
   History history = resumed ? History(resumed->history_text, resumed->history_rows) : History();

@@ -10,13 +10,15 @@
 
 namespace uhpc::macro {
 
-FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material)
-    : writer_(dir, "fields"), sphere_writer_(dir, "sphere"), law_fields_(law_output_fields(material)) {}
+FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, std::optional<FullFields> full)
+    : writer_(dir, "fields"), sphere_writer_(dir, "sphere"), law_fields_(law_output_fields(material)), full_(full) {}
 
-FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, const FieldOutputState& resumed)
+FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, const FieldOutputState& resumed,
+                         std::optional<FullFields> full)
     : writer_(dir, "fields", resumed.particle_steps),
       sphere_writer_(dir, "sphere", resumed.sphere_steps),
       law_fields_(law_output_fields(material)),
+      full_(full),
       last_time_(resumed.last_time_s) {}
 
 void FieldOutput::write(const ExplicitSolver& solver) {
@@ -43,6 +45,22 @@ void FieldOutput::write(const ExplicitSolver& solver) {
   for (std::size_t f = 0; f < k; ++f) {
     for (std::size_t i = 0; i < p.n; ++i) column_[f * p.n + i] = law_values_[k * i + f];
     fields.push_back({law_fields_[f], "1", 1, column_.data() + f * p.n});
+  }
+  if (full_) {
+    // The stress as XDMF's symmetric Tensor6 (xx, xy, xz, yy, yz, zz), from the stored 3 x 3 (row-major).
+    stress6_.resize(6 * p.n);
+    fragment_.resize(p.n);
+    id_.resize(p.n);
+    constexpr int kTensor6[6] = {0, 1, 2, 4, 5, 8};
+    for (std::size_t i = 0; i < p.n; ++i) {
+      for (int c = 0; c < 6; ++c) stress6_[6 * i + c] = p.stress[9 * i + kTensor6[c]];
+      fragment_[i] = solver.shapes().fragment(i) ? 1.0 : 0.0;
+      id_[i] = static_cast<double>(i);  // the row: the same particle in every step
+    }
+    fields.push_back({"stress", "Pa", 6, stress6_.data()});
+    fields.push_back({"fragment", "1", 1, fragment_.data()});
+    fields.push_back({"particle_id", "1", 1, id_.data()});
+    fields.push_back({"reference_position", "m", 3, full_->reference_position->data()});
   }
   writer_.write_step(solver.time(), p.n, 3, p.x.data(), fields);
   const RigidSphere& sphere = solver.sphere();

@@ -11,6 +11,7 @@
 //   BalanceTracker the worst energy and momentum balance errors over the run
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,13 +30,21 @@ struct FieldOutputState {
   double last_time_s = -1.0;
 };
 
+// The fields of `full` (case_config.hpp FieldSet) beyond the standard ones: the particles' reference
+// positions (3n), kept by the caller for the output's lifetime.
+struct FullFields {
+  const std::vector<double>* reference_position = nullptr;
+};
+
 class FieldOutput {
  public:
-  // Writes DIR/fields.{h5,xdmf} (the particles) and DIR/sphere.{h5,xdmf} (the projectile).
-  FieldOutput(const std::filesystem::path& dir, const MaterialSet& material);
+  // Writes DIR/fields.{h5,xdmf} (the particles) and DIR/sphere.{h5,xdmf} (the projectile); with `full`,
+  // also the stress tensor, the fragment flag, the particle id and the reference position each step.
+  FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, std::optional<FullFields> full = {});
   // Goes on with the files of an interrupted run from what its checkpoint recorded (steps written
   // after the checkpoint are dropped).
-  FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, const FieldOutputState& resumed);
+  FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, const FieldOutputState& resumed,
+              std::optional<FullFields> full = {});
   FieldOutputState state() const { return {writer_.steps(), sphere_writer_.steps(), last_time_}; }
   // Appends the solver's current state (skipped when a state of the same time was written last).
   void write(const ExplicitSolver& solver);
@@ -51,7 +60,8 @@ class FieldOutput {
   // of type Sphere scaled by "radius" with scale factor 2 draws it over fields.xdmf).
   ParticleFieldWriter sphere_writer_;
   std::vector<std::string> law_fields_;
-  std::vector<double> pressure_, equivalent_, dissipated_, law_values_, column_;
+  std::optional<FullFields> full_;
+  std::vector<double> pressure_, equivalent_, dissipated_, law_values_, column_, stress6_, fragment_, id_;
   double last_time_ = -1.0;
 };
 

@@ -489,6 +489,62 @@ TEST_F(MacroApp, AnObliqueOffsetShotConservesMomentum) {
   EXPECT_TRUE(std::filesystem::exists(dir_ / "sphere.xdmf"));
 }
 
+// run.fields = full adds, each step, the stress tensor (XDMF Tensor6: xx, xy, xz, yy, yz, zz), the fragment
+// flag, the particle id and the reference position; the standard set has none of them. Checked against
+// the standard fields of the same step: the pressure and the von Mises stress from the tensor, the
+// positions of the first step, result.json's fragment count.
+TEST_F(MacroApp, TheFullFieldSetAddsTheStressTensorFragmentsIdsAndReferencePositions) {
+  const auto run = [&](const std::vector<std::string>& extra, const std::filesystem::path& out) {
+    MacroRunArgs args;
+    args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+    args.overrides = {"projectile.velocity_m_s=1000", "run.end_time_s=1e-5"};
+    args.overrides.insert(args.overrides.end(), extra.begin(), extra.end());
+    args.out = out;
+    args.quiet = true;
+    run_macro(args);
+    return nlohmann::json::parse(test::read_file(out / "result.json"));
+  };
+  const nlohmann::json r = run({"run.fields=full"}, dir_ / "full");
+  run({}, dir_ / "standard");
+  const H5Reader full(dir_ / "full" / "fields.h5"), standard(dir_ / "standard" / "fields.h5");
+  const std::vector<std::string> steps = full.children("");
+  ASSERT_GE(steps.size(), 2u);
+  const std::string last = steps.back();
+  EXPECT_FALSE(standard.has(last + "/stress"));
+  const H5Array<double> stress = full.read_doubles(last + "/stress"), pressure = full.read_doubles(last + "/pressure"),
+                        mises = full.read_doubles(last + "/equivalent_stress"),
+                        fragment = full.read_doubles(last + "/fragment"), id = full.read_doubles(last + "/particle_id"),
+                        reference = full.read_doubles(last + "/reference_position"),
+                        first = full.read_doubles(steps.front() + "/position");
+  const std::size_t n = pressure.values.size();
+  ASSERT_EQ(stress.dims, (H5Dims{n, 6}));
+  double largest = 0.0, fragments = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* t = &stress.values[6 * i];  // xx, xy, xz, yy, yz, zz
+    const double mean = (t[0] + t[3] + t[5]) / 3.0, dx = t[0] - mean, dy = t[3] - mean, dz = t[5] - mean;
+    const double j2 = 0.5 * (dx * dx + dy * dy + dz * dz) + t[1] * t[1] + t[2] * t[2] + t[4] * t[4];
+    largest = std::max(largest, std::abs(pressure.values[i]));
+    EXPECT_NEAR(-mean, pressure.values[i], 1e-9 * (1.0 + std::abs(pressure.values[i]))) << i;
+    EXPECT_NEAR(std::sqrt(3.0 * j2), mises.values[i], 1e-9 * (1.0 + mises.values[i])) << i;
+    EXPECT_EQ(id.values[i], static_cast<double>(i));
+    EXPECT_TRUE(fragment.values[i] == 0.0 || fragment.values[i] == 1.0) << i;
+    fragments += fragment.values[i];
+  }
+  EXPECT_GT(largest, 1e8);  // the step is loaded: the comparison is not of zeros
+  EXPECT_EQ(reference.values, first.values);  // the first step is the reference configuration
+  EXPECT_EQ(fragments, r.at("fragment_particles").get<double>());
+  // An output choice only: the standard set again is the same run.
+  EXPECT_EQ(full.read_doubles(last + "/position").values, standard.read_doubles(last + "/position").values);
+  // A value not offered is refused, naming the key.
+  MacroRunArgs bad;
+  bad.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  bad.overrides = {"run.fields=everything"};
+  bad.out = dir_ / "bad";
+  bad.quiet = true;
+  const std::string message = test::error_of<InputError>([&] { run_macro(bad); });
+  EXPECT_NE(message.find("run.fields"), std::string::npos) << message;
+}
+
 TEST(MacroCaseConfig, StrainConfigurationNames) {
   const std::string path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
   const auto read = [&](const std::string& name) {
