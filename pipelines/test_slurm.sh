@@ -151,6 +151,15 @@ bl_runs=$(ls -d "$S"/srun/ballistic_limit/v* | wc -l)
 say "sweep through srun: ${#VELOCITIES[@]} shots + $bl_runs bisection runs in $sweep_steps srun steps, $((SECONDS - t0)) s"
 [ "$sweep_steps" -eq $(( ${#VELOCITIES[@]} + bl_runs )) ] ||
   fail "expected one srun step per run ($(( ${#VELOCITIES[@]} + bl_runs ))), slurmd launched $sweep_steps"
+# Resumed, the same targets launch no job step: pipelines/launch_shot.sh recognises each finished shot
+# before srun (uhpc-macro --reuse-check), and the bisection reads its finished runs.
+before=$(steps)
+salloc -N1 -n2 -c1 -J uhpc-sweep make -j2 "${MAKE_ARGS[@]}" "${SWEEP[@]}" OUT="$S/srun" \
+  LAUNCH="srun -N1 -n1 -c1 --exclusive" $(shot_targets "$S/srun") ballistic-limit > "$S/log/sweep_srun_again.log" 2>&1 ||
+  fail "the resumed sweep through salloc + srun failed: $(tail -n 5 "$S/log/sweep_srun_again.log")"
+again_steps=$(( $(steps) - before ))
+say "the same sweep again through srun: $again_steps srun steps"
+[ "$again_steps" -eq 0 ] || fail "a resumed sweep launched $again_steps srun steps for finished runs"
 t0=$SECONDS
 # Two runs at once, one thread each, as srun -c1 gives them (two threads each would oversubscribe the
 # 2 cores 2x; the results are the same, the wall time about 3x: docs/cluster.md).

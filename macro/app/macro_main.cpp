@@ -1,6 +1,6 @@
 // uhpc-macro: one 3D penetration run (docs/architecture.md section 2).
 //
-//   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q] [--restart | --reuse]
+//   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q] [--restart | --reuse | --reuse-check]
 //   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --inputs-hash
 //
 // Writes DIR/result.json, DIR/history.csv and DIR/fields.h5 + DIR/fields.xdmf (ParaView); on a
@@ -34,6 +34,10 @@ int main(int argc, char** argv) {
                "keep a finished run already in OUT when its result.json was made from these inputs (the same "
                "provenance.config_hash); exit 2 when it was made from other inputs");
   reuse->excludes(app.get_option("--restart"));
+  auto* reuse_check = app.add_flag("--reuse-check", args.reuse_check,
+               "print \"kept\" when OUT holds a finished run of these inputs, \"run\" when it holds none, exit 2 "
+               "when it holds one of other inputs; writes nothing");
+  reuse_check->excludes(app.get_option("--restart"));
   uhpc::add_set_option(app, args.overrides);
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);

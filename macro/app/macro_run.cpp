@@ -193,6 +193,10 @@ void run_macro(const MacroRunArgs& args) {
     std::cout << inputs.hash << std::endl;
     return;
   }
+  if (args.reuse_check) {
+    std::cout << (reuse_finished_run(args.out / "result.json", inputs.hash) ? "kept" : "run") << std::endl;
+    return;
+  }
   if (args.reuse && reuse_finished_run(args.out / "result.json", inputs.hash)) return;
   const fs::path checkpoint_file = args.out / "checkpoint.h5";
   std::optional<RunCheckpoint> resumed;

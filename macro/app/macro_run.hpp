@@ -24,6 +24,10 @@ struct MacroRunArgs {
   // A finished run already in out (its result.json) is kept when it was made from these inputs (the same
   // provenance.config_hash) and refused (InputError) when it was not: the make rules reuse runs safely.
   bool reuse = false;
+  // Only say whether out holds a finished run of these inputs: prints "kept" (it does) or "run" (it holds
+  // none: a run is needed), refuses (InputError) one of other inputs, and writes nothing. A launcher
+  // (pipelines/launch_shot.sh) asks this before it spends a job step on a shot.
+  bool reuse_check = false;
 };
 
 void run_macro(const MacroRunArgs& args);

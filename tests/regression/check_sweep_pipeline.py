@@ -107,6 +107,21 @@ def main():
     again = subprocess.run(make + ["sweep"], env=env, capture_output=True, text=True)
     check(again.returncode == 0 and all((r.read_bytes(), (r.parent / "history.csv").stat().st_mtime_ns) == before[r]
                                         for r in runs), f"a second make sweep keeps its {len(runs)} runs untouched")
+    # Through a launcher (as Slurm's srun), a finished shot is recognised before the launcher
+    # (pipelines/launch_shot.sh): no launch for the kept runs, one for a run that is missing.
+    launcher = out / "launcher.sh"
+    launcher.write_text(f"#!/bin/sh\necho \"$*\" >> {out / 'launches.txt'}\nexec \"$@\"\n")
+    launcher.chmod(0o755)
+    through = subprocess.run(make + ["sweep", f"LAUNCH={launcher}"], env=env, capture_output=True, text=True)
+    check(through.returncode == 0 and not (out / "launches.txt").exists()
+          and all(r.read_bytes() == before[r][0] for r in runs), "through a launcher, the kept runs launch nothing")
+    shutil.rmtree(sweep / "v900")
+    through = subprocess.run(make + ["sweep", f"LAUNCH={launcher}"], env=env, capture_output=True, text=True)
+    launched = (out / "launches.txt").read_text().splitlines() if (out / "launches.txt").exists() else []
+    check(through.returncode == 0 and len(launched) == 1 and "projectile.velocity_m_s=900" in launched[0]
+          and (sweep / "v900" / "result.json").is_file(), f"through a launcher, only the missing run is launched: {launched}")
+    runs = sorted(sweep.glob("v*/result.json"))
+    before = {r: (r.read_bytes(), (r.parent / "history.csv").stat().st_mtime_ns) for r in runs}
     other = [a if not a.startswith("SHOT_SET=") else "SHOT_SET=--set run.end_time_s=5e-4" for a in make]
     refused = subprocess.run(other + ["sweep"], env=env, capture_output=True, text=True)
     check(refused.returncode != 0 and "made from other inputs" in refused.stderr

@@ -292,6 +292,32 @@ TEST_F(MacroApp, ReuseKeepsARunOfTheSameInputsAndRefusesOneOfOthers) {
   EXPECT_TRUE(std::filesystem::exists(dir_ / "run" / "history.csv"));
 }
 
+// --reuse-check only answers (pipelines/launch_shot.sh asks it before a launcher): "kept" for a finished
+// run of these inputs, "run" where there is none, an InputError for one of other inputs; it writes nothing.
+TEST_F(MacroApp, ReuseCheckSaysWhetherARunIsNeededAndWritesNothing) {
+  MacroRunArgs args;
+  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  args.overrides = {"run.end_time_s=1e-7"};
+  args.out = dir_ / "run";
+  args.quiet = true;
+  const auto answer = [](const MacroRunArgs& a) {  // the last line printed (the test's log goes to stdout too)
+    testing::internal::CaptureStdout();
+    run_macro(a);
+    const std::string out = testing::internal::GetCapturedStdout();
+    return out.substr(out.rfind('\n', out.size() - 2) + 1);
+  };
+  MacroRunArgs check = args;
+  check.reuse_check = true;
+  EXPECT_EQ(answer(check), "run\n");
+  EXPECT_FALSE(std::filesystem::exists(args.out));
+  run_macro(args);
+  const std::string first = test::read_file(args.out / "result.json");
+  EXPECT_EQ(answer(check), "kept\n");
+  EXPECT_EQ(test::read_file(args.out / "result.json"), first);
+  check.overrides.push_back("projectile.velocity_m_s=101");
+  EXPECT_THROW(run_macro(check), InputError);
+}
+
 // A run its first stable step cannot finish within run.max_steps is refused before it starts (exit 2,
 // the estimate in the message): a density of 1e-300 gave a step of exactly 0 and a run that never
 // advanced while history.csv grew; a bulk modulus of 1e300 or a speed of 1e9 m/s, runs of days.
