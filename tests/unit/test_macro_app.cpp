@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -30,17 +31,23 @@ namespace {
 
 class MacroApp : public test::ScratchDirTest {};
 
+// uhpc-macro's arguments for the elastic block case with `overrides`, writing to `out`, quietly.
+MacroRunArgs block_args(std::vector<std::string> overrides, const std::filesystem::path& out) {
+  MacroRunArgs args;
+  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  args.overrides = std::move(overrides);
+  args.out = out;
+  args.quiet = true;
+  return args;
+}
+
 // 3000 m/s throws particles off the impact face; a domain margin of 5 % of the block (2.4 mm) lets them out.
 // With the energy check off the domain is the guard of last resort, and their leaving fails the run.
 const std::vector<std::string> kEscape = {"projectile.velocity_m_s=3000", "solver.domain_margin=0.05",
                                           "solver.energy_error_limit=0"};
 
 TEST_F(MacroApp, ParticleLeavingTheDomainStopsWithDiagnosticAndLastGoodState) {
-  MacroRunArgs args;
-  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-  args.overrides = kEscape;
-  args.out = dir_;
-  args.quiet = true;
+  MacroRunArgs args = block_args(kEscape, dir_);
   const std::string message = test::error_of<NumericalError>([&] { run_macro(args); });
   EXPECT_NE(message.find("particle_left_domain"), std::string::npos) << message;
   EXPECT_FALSE(std::filesystem::exists(dir_ / "result.json"));
@@ -90,11 +97,7 @@ TEST_F(MacroApp, ProgramExitsWithCodeOneOnANumericalFailure) {
 // target an ejecta feels nothing, so its leaving the box changes nothing).
 TEST_F(MacroApp, EjectaBeyondTheDomainFlyOnWhileTheEnergyIsChecked) {
   const auto run = [&](const std::string& margin, const std::filesystem::path& out) {
-    MacroRunArgs args;
-    args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-    args.overrides = {kEscape[0], "solver.domain_margin=" + margin};
-    args.out = out;
-    args.quiet = true;
+    MacroRunArgs args = block_args({kEscape[0], "solver.domain_margin=" + margin}, out);
     run_macro(args);
     return nlohmann::json::parse(test::read_file(out / "result.json"));
   };
@@ -116,11 +119,7 @@ TEST_F(MacroApp, EjectaBeyondTheDomainFlyOnWhileTheEnergyIsChecked) {
 // A fixed rim: the held particles' reactions are external forces, and the momentum balance
 // p - p0 = external impulse holds to round-off once the waves have reached the rim (5.6 us).
 TEST_F(MacroApp, FixedRimReactionsCloseTheMomentumBalance) {
-  MacroRunArgs args;
-  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-  args.overrides = {"support.rim=fixed", "run.end_time_s=2e-5"};
-  args.out = dir_;
-  args.quiet = true;
+  MacroRunArgs args = block_args({"support.rim=fixed", "run.end_time_s=2e-5"}, dir_);
   run_macro(args);
   const nlohmann::json r = nlohmann::json::parse(test::read_file(dir_ / "result.json"));
   const double impulse_z = r.at("momentum").at("external_impulse_N_s")[2].get<double>();
@@ -234,11 +233,7 @@ TEST_F(MacroApp, TheRunRecordsEveryFileItReadAndTheSdelItUsed) {
 // --inputs-hash prints what the run's result.json would carry as provenance.config_hash (the pipelines
 // reuse a run only when the two agree) and writes nothing; another --set gives another hash.
 TEST_F(MacroApp, InputsHashIsTheRunsConfigHashAndWritesNothing) {
-  MacroRunArgs args;
-  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-  args.overrides = {"run.end_time_s=1e-7"};
-  args.out = dir_ / "run";
-  args.quiet = true;
+  MacroRunArgs args = block_args({"run.end_time_s=1e-7"}, dir_ / "run");
   const auto hash_of = [](MacroRunArgs a) {
     a.inputs_hash = true;
     testing::internal::CaptureStdout();
@@ -266,11 +261,7 @@ TEST_F(MacroApp, InputsHashIsTheRunsConfigHashAndWritesNothing) {
 // --reuse (the make rules' runs): a finished run of the same inputs is kept untouched, one of other
 // inputs is refused (exit 2) and left as it was, an unreadable result.json is refused too.
 TEST_F(MacroApp, ReuseKeepsARunOfTheSameInputsAndRefusesOneOfOthers) {
-  MacroRunArgs args;
-  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-  args.overrides = {"run.end_time_s=1e-7"};
-  args.out = dir_ / "run";
-  args.quiet = true;
+  MacroRunArgs args = block_args({"run.end_time_s=1e-7"}, dir_ / "run");
   args.reuse = true;
   run_macro(args);  // nothing there yet: it runs
   const std::filesystem::path result = dir_ / "run" / "result.json";
@@ -295,11 +286,7 @@ TEST_F(MacroApp, ReuseKeepsARunOfTheSameInputsAndRefusesOneOfOthers) {
 // --reuse-check only answers (pipelines/launch_shot.sh asks it before a launcher): "kept" for a finished
 // run of these inputs, "run" where there is none, an InputError for one of other inputs; it writes nothing.
 TEST_F(MacroApp, ReuseCheckSaysWhetherARunIsNeededAndWritesNothing) {
-  MacroRunArgs args;
-  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-  args.overrides = {"run.end_time_s=1e-7"};
-  args.out = dir_ / "run";
-  args.quiet = true;
+  MacroRunArgs args = block_args({"run.end_time_s=1e-7"}, dir_ / "run");
   const auto answer = [](const MacroRunArgs& a) {  // the last line printed (the test's log goes to stdout too)
     testing::internal::CaptureStdout();
     run_macro(a);
@@ -323,11 +310,7 @@ TEST_F(MacroApp, ReuseCheckSaysWhetherARunIsNeededAndWritesNothing) {
 // advanced while history.csv grew; a bulk modulus of 1e300 or a speed of 1e9 m/s, runs of days.
 TEST_F(MacroApp, ARunBeyondTheStepBudgetIsRefusedBeforeItStarts) {
   const auto refused = [&](const std::vector<std::string>& overrides) {
-    MacroRunArgs args;
-    args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-    args.overrides = overrides;
-    args.out = dir_;
-    args.quiet = true;
+    MacroRunArgs args = block_args(overrides, dir_);
     return test::error_of<InputError>([&] { run_macro(args); });
   };
   const std::string file = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
@@ -422,12 +405,10 @@ TEST_F(MacroApp, TheFrameHoldsTheRimBandAlongTheAxisOnly) {
 // (stop_after_outcome_s later), not at the end time. "Stopped" is relative to the target's centre of
 // mass, which the free block sets moving.
 TEST_F(MacroApp, ASphereThatStopsInTheTargetIsEmbedded) {
-  MacroRunArgs args;
-  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-  args.overrides = {"material.model=j2", "material.yield_stress_Pa=1.5e7", "material.hardening_modulus_Pa=0",
-                    "run.end_time_s=4e-4", "run.stop_after_outcome_s=2e-6"};
-  args.out = dir_;
-  args.quiet = true;
+  MacroRunArgs args = block_args({"material.model=j2", "material.yield_stress_Pa=1.5e7",
+                                  "material.hardening_modulus_Pa=0", "run.end_time_s=4e-4",
+                                  "run.stop_after_outcome_s=2e-6"},
+                                 dir_);
   run_macro(args);
   const nlohmann::json r = nlohmann::json::parse(test::read_file(dir_ / "result.json"));
   std::printf("soft J2 block at 100 m/s: outcome %s at %.2f us, sphere at z = %.2f mm, v_z = %.3f m/s\n",
@@ -484,11 +465,7 @@ TEST(MacroCaseSetup, TheImpactGeometryPlacesTheSphereOnItsFlightLine) {
 // An oblique, offset shot conserves momentum (a free block: no external impulse), its x component too,
 // and the run records the geometry it ran.
 TEST_F(MacroApp, AnObliqueOffsetShotConservesMomentum) {
-  MacroRunArgs args;
-  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-  args.overrides = {"projectile.obliquity_deg=30", "projectile.offset_m=0.004", "run.end_time_s=3e-5"};
-  args.out = dir_;
-  args.quiet = true;
+  MacroRunArgs args = block_args({"projectile.obliquity_deg=30", "projectile.offset_m=0.004", "run.end_time_s=3e-5"}, dir_);
   run_macro(args);
   const nlohmann::json r = nlohmann::json::parse(test::read_file(dir_ / "result.json"));
   const nlohmann::json& p = r.at("momentum");
@@ -521,12 +498,8 @@ TEST_F(MacroApp, AnObliqueOffsetShotConservesMomentum) {
 // positions of the first step, result.json's fragment count.
 TEST_F(MacroApp, TheFullFieldSetAddsTheStressTensorFragmentsIdsAndReferencePositions) {
   const auto run = [&](const std::vector<std::string>& extra, const std::filesystem::path& out) {
-    MacroRunArgs args;
-    args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-    args.overrides = {"projectile.velocity_m_s=1000", "run.end_time_s=1e-5"};
+    MacroRunArgs args = block_args({"projectile.velocity_m_s=1000", "run.end_time_s=1e-5"}, out);
     args.overrides.insert(args.overrides.end(), extra.begin(), extra.end());
-    args.out = out;
-    args.quiet = true;
     run_macro(args);
     return nlohmann::json::parse(test::read_file(out / "result.json"));
   };
@@ -562,11 +535,7 @@ TEST_F(MacroApp, TheFullFieldSetAddsTheStressTensorFragmentsIdsAndReferencePosit
   // An output choice only: the standard set again is the same run.
   EXPECT_EQ(full.read_doubles(last + "/position").values, standard.read_doubles(last + "/position").values);
   // A value not offered is refused, naming the key.
-  MacroRunArgs bad;
-  bad.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
-  bad.overrides = {"run.fields=everything"};
-  bad.out = dir_ / "bad";
-  bad.quiet = true;
+  MacroRunArgs bad = block_args({"run.fields=everything"}, dir_ / "bad");
   const std::string message = test::error_of<InputError>([&] { run_macro(bad); });
   EXPECT_NE(message.find("run.fields"), std::string::npos) << message;
 }
