@@ -32,6 +32,7 @@
 #include "uhpc/data_dir.hpp"
 #include "uhpc/errors.hpp"
 #include "uhpc/logging.hpp"
+#include "uhpc/output_lock.hpp"
 #include "uhpc/provenance.hpp"
 #include "uhpc/sdel_handoff.hpp"
 
@@ -96,7 +97,13 @@ int calibrate(const std::string& ensemble_path, const std::string& config_path,
         "A / sqrt(1 + a lambda) is a single number: the fit needs at least 2 sizes",
         ensemble_path, ensemble.sizes_m.front()));
   }
+  // The outputs are checked and taken before the fit (minutes on a large ensemble), not found unusable after
+  // it: --out and the report directory are this run's alone until it ends.
+  const uhpc::OutputLock out_lock = uhpc::lock_output_file(out, "uhpc-calibrate");
   if (report_dir.empty()) report_dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  const uhpc::OutputLock report_lock = uhpc::lock_output_directory(report_dir, "uhpc-calibrate");
+  for (const char* name : {"fit_report.json", "calibration_figures.h5", "fit_diagnostic.json"})
+    uhpc::require_file_path(report_dir / name);
   fs::remove(report_dir / "fit_diagnostic.json");  // an earlier failure's, which this run replaces or clears
   uhpc::SdelFitResult fit;
   try {
@@ -146,6 +153,7 @@ int synthesize(const std::string& sdel_path, const std::string& config_path, con
   const uhpc::SdelHandoff handoff = uhpc::read_sdel_handoff(sdel_path);
   const uhpc::Config cfg = uhpc::Config::load(config_path, overrides);
   const uhpc::SyntheticEnsembleSettings s = uhpc::read_synthetic_settings(cfg, handoff.l_mac_m);
+  const uhpc::OutputLock lock = uhpc::lock_output_file(out, "uhpc-calibrate synthesize");
   const uhpc::Ensemble e = uhpc::synthesize_ensemble(handoff.constants, s);
   uhpc::write_ensemble(out, e, uhpc::Provenance::make("uhpc-calibrate synthesize", cfg.hash(), s.seed));
   spdlog::info("wrote {}: {} sizes x {} strains from {} (noise {}, seed {})", out.string(), e.size_count(),

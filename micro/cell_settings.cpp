@@ -50,16 +50,20 @@ void check_mesh_budget(const CellSettings& s, const std::string& cell_config_pat
   const double nodes = 1.155 * ratio * ratio;
   if (nodes > kMaxMeshNodes)
     throw_input_error(cell_config_path, "discretization.nominal_spacing_m",
-                      fmt::format("a cell of side {:g} m at spacing {:g} m needs about {:.2g} mesh nodes, more than "
-                                  "the {:.0g} a cell may have",
-                                  s.cell.side_m, s.mesh.nominal_spacing_m, nodes, kMaxMeshNodes));
+                      fmt::format("a cell of side {:g} m ({}) at spacing {:g} m needs about {:.2g} mesh nodes, more "
+                                  "than the {:.0g} a cell may have (reduce {} or raise nominal_spacing_m)",
+                                  s.cell.side_m, s.side_input, s.mesh.nominal_spacing_m, nodes, kMaxMeshNodes,
+                                  s.side_input));
 }
 
 void read_cell(const Config& c, CellSettings& s, double size_override_m, const std::uint64_t* seed_override) {
   CellOptions& o = s.cell;
   c.accept_any("notes");
   o.side_m = c.number("cell_size_m", Range::positive());
-  if (size_override_m > 0.0) o.side_m = size_override_m;
+  if (size_override_m > 0.0) {
+    o.side_m = size_override_m;
+    s.side_input = "the ensemble's cell_sizes_m";
+  }
   s.seed = static_cast<std::uint64_t>(c.integer("seed", Range::closed(0, 9007199254740991.0)));  // < 2^53
   if (seed_override) s.seed = *seed_override;
   o.load = c.choice("loading_direction", {"x", "y"}) == "x" ? LoadAxis::X : LoadAxis::Y;
@@ -169,8 +173,20 @@ CellSettings load_cell_settings(const std::string& cell_config_path, std::vector
 void rethrow_as_input_error(const CellGenerationError& e, const CellSettings& s, const std::string& cell_config_path) {
   using R = CellGenerationError::Reason;
   switch (e.reason()) {
-    case R::CellTooSmall:
-      throw_input_error(cell_config_path, "cell_size_m", e.what());
+    case R::CellTooSmall: {
+      // Two ligaments as wide as the cell leave no room for any pore whatever the cell's size: the
+      // ligament is the value to fix (min_ligament_m = 1 on a 3 mm cell), otherwise the side is.
+      const CellOptions& o = s.cell;
+      if (2.0 * o.placement.min_ligament_m >= o.side_m)
+        throw_input_error(cell_config_path, "placement.min_ligament_m",
+                          fmt::format("value {:g} leaves no room for a pore: two ligaments of {:g} m are as wide as "
+                                      "the cell side {:g} m ({}) or wider",
+                                      o.placement.min_ligament_m, o.placement.min_ligament_m, o.side_m, s.side_input));
+      if (s.side_input == "cell_size_m")
+        throw_input_error(cell_config_path, "cell_size_m", fmt::format("{} (placement.min_ligament_m)", e.what()));
+      throw_input_error(cell_config_path, "",
+                        fmt::format("{} (the side is {}, the ligaments placement.min_ligament_m)", e.what(), s.side_input));
+    }
     case R::UnreachablePorosity:
       throw_input_error(s.microstructure_file, "area_porosity", e.what());
     case R::PlacementFailed:

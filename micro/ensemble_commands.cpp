@@ -29,6 +29,7 @@
 #include "uhpc/ensemble_file.hpp"
 #include "uhpc/errors.hpp"
 #include "uhpc/hash.hpp"
+#include "uhpc/output_lock.hpp"
 #include "uhpc/progress.hpp"
 #include "uhpc/resources.hpp"
 
@@ -174,6 +175,9 @@ CellJob cell_job(const EnsembleInputs& in, const fs::path& out, std::size_t k) {
 // Reloads a finished run of the cell when one of the same cell and analysis is on disk (a failed one
 // only when it is not to be retried); true when it did.
 bool reload_cell(const EnsembleInputs& in, const EnsembleSelection& selection, CellOutcome& o) {
+  if (!fs::is_directory(o.job.out_dir)) return false;
+  // Read (and refreshed) by this run alone: a cell another run is analysing stops this one, exit 2.
+  const OutputLock lock = lock_output_directory(o.job.out_dir, "uhpc-micro ensemble");
   std::optional<StoredCell> stored = load_cell_results(o.job.out_dir, cell_hash(o.job), in.post_hash);
   if (!stored || (stored->response.status == CellStatus::Failed && in.e.retry_failed && !selection.assemble_only))
     return false;
@@ -188,7 +192,9 @@ bool reload_cell(const EnsembleInputs& in, const EnsembleSelection& selection, C
 // failed cell, not a failed run).
 void analyse_cell(const EnsembleInputs& in, CellOutcome& o) {
   CellJob& job = o.job;
-  fs::create_directories(job.out_dir);
+  // Each cell is locked while it is analysed and written, so the runs of a part of the ensemble
+  // (--only-size, --only-cell: one batch job each) share the directory but never a cell.
+  const OutputLock lock = lock_output_directory(job.out_dir, "uhpc-micro ensemble");
   CellResponse response;
   try {
     prepare_cell(job, "uhpc-micro ensemble");
@@ -343,6 +349,10 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   // A partial run (--only-size, --only-cell) handles its cells alone and writes no ensemble file.
   const std::vector<std::size_t> chosen = selected_cells(e, selection);
   const bool partial = selection.only_size_mm.has_value() || selection.only_cell.has_value();
+  // A run over every cell (or --assemble-only) writes ensemble.h5 and summary.json: one such run at a time.
+  // Runs of a part lock only their cells (below), so that batch jobs of one ensemble run side by side.
+  OutputLock ensemble_lock;
+  if (!partial) ensemble_lock = lock_output_directory(out, "uhpc-micro ensemble");
 
   // Every finished cell is reloaded before any solve starts, so the progress count and its ETA are the
   // solves' from the first line (the solves go largest first, and a resumed run's finished cells are

@@ -17,6 +17,7 @@
 #include "uhpc/atomic_file.hpp"
 #include "uhpc/cli.hpp"
 #include "uhpc/hash.hpp"
+#include "uhpc/output_lock.hpp"
 #include "uhpc/progress.hpp"
 #include "uhpc/provenance.hpp"
 
@@ -67,6 +68,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 int run_generate(const std::string& config_path, const std::vector<std::string>& overrides, const fs::path& out) {
   const auto t0 = std::chrono::steady_clock::now();
   const CellSettings s = load_cell_settings(config_path, overrides);
+  const OutputLock lock = lock_output_directory(out, "uhpc-micro generate");
   const CellResult r = generate_one(s, config_path, out, "uhpc-micro generate", true);
   const CellGeometry& g = r.cell.geometry;
   std::printf("cell %.2f mm, seed %llu: %zu pores (largest %.1f um), %zu seeds, porosity %.5f (target %g +- %g)\n",
@@ -124,6 +126,7 @@ int run_generate_ensemble(const std::string& config_path, const std::vector<std:
   // Validate every size before generating anything, so bad input fails at once.
   std::vector<CellSettings> per_size;
   for (double size : e.sizes_m) per_size.push_back(load_cell_settings(e.cell_config, cell_overrides, size));
+  const OutputLock lock = lock_output_directory(out, "uhpc-micro generate-ensemble");
 
   ProgressOptions progress_options;
   progress_options.unit = "cells";
@@ -267,6 +270,7 @@ nlohmann::json elastic_json(const ElasticSettings& s, const GeneratedCell& cell,
 int run_elastic(const std::string& config_path, const std::vector<std::string>& overrides, const fs::path& out) {
   const auto t0 = std::chrono::steady_clock::now();
   const ElasticSettings s = load_elastic_settings(config_path, overrides);
+  const OutputLock lock = lock_output_directory(out, "uhpc-micro elastic");
   const GeneratedCell cell = generate_or_explain(s.cell, s.cell_config);
   const CellDiscretization mesh = mesh_cell(cell.geometry, s.cell.mesh);
   const double mesh_s = seconds_since(t0);

@@ -10,6 +10,7 @@
 #include "cell_settings.hpp"
 #include "uhpc/cli.hpp"
 #include "uhpc/errors.hpp"
+#include "uhpc/output_lock.hpp"
 #include "uhpc/progress.hpp"
 
 namespace fs = std::filesystem;
@@ -41,7 +42,7 @@ int run_cell_command(const std::string& config_path, const std::vector<std::stri
   job.analysis = analysis.json();
   job.curve_end_strain = post.grid_max_strain;
   job.analysis_source = cfg.source();
-  fs::create_directories(out);
+  const OutputLock lock = lock_output_directory(out, "uhpc-micro run");
   try {
     prepare_cell(job, "uhpc-micro run");
   } catch (const CellGenerationError& e) {

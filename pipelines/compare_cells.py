@@ -5,7 +5,8 @@ usage: compare_cells.py A B [--rtol R]
 
 Every key of summary.json (apart from wall_s, dates and provenance) and every dataset of curves.h5 must
 agree: exactly by default (a refactor of the solver must not change a bit), or within the relative
-tolerance R (a changed solver: the issue asks for 1e-6). Prints each difference and the verdict; exit 0
+tolerance R (a changed solver: the issue asks for 1e-6). A key or a dataset in only one of the two cells
+is a difference, whichever cell holds it. Prints each difference and the verdict; exit 0
 when the cells agree, 1 otherwise.
 """
 import argparse
@@ -47,13 +48,24 @@ def compare_json(x, y, rtol, path=""):
     return bad
 
 
+def dataset_names(f):
+    names = []
+    f.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
+    return names
+
+
 def compare_h5(a, b, rtol):
-    bad, names = [], []
-    with h5py.File(a) as fa, h5py.File(b) as fb:
-        fa.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
-        for n in names:
-            if n not in fb:
+    """The differences between the datasets of two curves.h5, and how many datasets the two hold together: a
+    dataset in only one of them is a difference, whichever it is in."""
+    bad = []
+    with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
+        in_a, in_b = dataset_names(fa), dataset_names(fb)
+        for n in sorted(set(in_a) | set(in_b)):
+            if n not in in_b:
                 bad.append(f"curves.h5 {n}: only in A")
+                continue
+            if n not in in_a:
+                bad.append(f"curves.h5 {n}: only in B")
                 continue
             x, y = fa[n][()], fb[n][()]
             if np.shape(x) != np.shape(y):
@@ -63,7 +75,7 @@ def compare_h5(a, b, rtol):
                     bad.append(f"curves.h5 {n}: largest difference {np.nanmax(np.abs(x - y)):.3e}")
             elif not np.array_equal(x, y):
                 bad.append(f"curves.h5 {n}: differs")
-    return bad, len(names)
+    return bad, len(set(in_a) | set(in_b))
 
 
 def main():

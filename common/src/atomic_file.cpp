@@ -134,8 +134,10 @@ void commit_temporary(const std::filesystem::path& temporary, const std::filesys
   std::error_code ec;
   std::filesystem::rename(temporary, target, ec);
   if (ec) {
-    throw std::runtime_error(target.string() + ": cannot rename " + quoted(temporary) + " to " + quoted(target) +
-                             ": " + ec.message());
+    // The finished file cannot take its name (a directory of that name in the way, no permission, a
+    // read-only file system): an output path the user must fix, exit 2 like an unusable directory.
+    throw InputError(target.string() + ": cannot rename " + quoted(temporary) + " to " + quoted(target) + ": " +
+                     ec.message());
   }
   sync_directory(target.parent_path());
 }

@@ -5,8 +5,10 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <set>
 
 #include "uhpc/build_info.hpp"
+#include "uhpc/did_you_mean.hpp"
 #include "uhpc/errors.hpp"
 
 namespace uhpc {
@@ -37,6 +39,23 @@ int on_success_request(const CLI::App* app, const std::string& program, const CL
   return report("internal error: ", program + ": " + e.get_name() + " needs run_main(app, body) to print the help", kExitNumerical);
 }
 
+// A command line of a program with subcommands whose first word is none of them ("uhpc-micro generat")
+// fails in CLI11 as "A subcommand is required" or as an unexpected argument, neither naming the word as
+// the command meant. Returns the message that does ("'generat' is not one of uhpc-micro's commands:
+// elastic, ..., run (did you mean 'generate'?)"), or "" when the parse failed for another reason.
+std::string unknown_subcommand_message(const CLI::App& app) {
+  if (!app.get_subcommands().empty()) return {};  // a subcommand was recognised: its own error stands
+  std::set<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.insert(sub->get_name());
+  const std::vector<std::string> rest = app.remaining();
+  if (names.empty() || rest.empty() || rest.front().empty() || rest.front()[0] == '-') return {};
+  const std::string& word = rest.front();
+  std::string message = "'" + word + "' is not one of " + app.get_name() + "'s commands:";
+  for (const std::string& name : names) message += (name == *names.begin() ? " " : ", ") + name;
+  if (const std::string guess = closest_name(word, names); !guess.empty()) message += " (did you mean '" + guess + "'?)";
+  return message;
+}
+
 // Thrown by the final callback under UHPC_PARSE_ONLY: the command line parsed, nothing runs.
 struct ParsedOnly {};
 
@@ -56,6 +75,9 @@ int run(const CLI::App* app, const std::string& program, const std::function<int
                   kExitBadInput);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return on_success_request(app, program, e);
+    if (app != nullptr)
+      if (const std::string unknown = unknown_subcommand_message(*app); !unknown.empty())
+        return report("error: ", unknown, kExitBadInput);
     return report("error: ", e.what(), kExitBadInput);
   } catch (const std::exception& e) {
     return report("internal error: ", e.what(), kExitNumerical);

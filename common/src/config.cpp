@@ -1,4 +1,5 @@
 #include "uhpc/config.hpp"
+#include "uhpc/did_you_mean.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -242,6 +243,10 @@ Json override_value(const std::string& text, const std::string& source, const st
 }
 
 }  // namespace
+
+std::string closest_name(const std::string& name, const std::set<std::string>& candidates) {
+  return closest_key(name, candidates);
+}
 
 // ---------------------------------------------------------------------------------------------
 // Range

@@ -4,11 +4,27 @@
 #include <cmath>
 #include <utility>
 
+#include <fmt/format.h>
+
 namespace uhpc::macro {
 
 double estimated_particle_count(const TargetSettings& t) {
   if (t.shape == TargetSettings::Shape::Disc) return disc_particle_estimate(t.disc);
   return box_particle_count(t.box_size_m[0], t.box_size_m[1], t.box_size_m[2], t.box_spacing_m);
+}
+
+std::string spacing_inputs(const TargetSettings& t) {
+  if (t.shape == TargetSettings::Shape::Disc)
+    return fmt::format("target.h_axis_m = {:g} m, target.h_rim_m = {:g} m", t.disc.h_axis_m, t.disc.h_rim_m);
+  return fmt::format("target.spacing_m = {:g} m", t.box_spacing_m);
+}
+
+std::string particle_count_inputs(const TargetSettings& t) {
+  if (t.shape == TargetSettings::Shape::Disc)
+    return fmt::format("target.radius_m = {:g} m, target.thickness_m = {:g} m, {}", t.disc.radius_m, t.disc.thickness_m,
+                       spacing_inputs(t));
+  return fmt::format("target.size_m = [{:g}, {:g}, {:g}] m, {}", t.box_size_m[0], t.box_size_m[1], t.box_size_m[2],
+                     spacing_inputs(t));
 }
 
 ParticleBody make_target_body(const TargetSettings& t) {

@@ -1,6 +1,8 @@
 #pragma once
 // Builds the solver of a case: the target's particles (centred on the z axis, entry face z = 0), the
 // material, the rim support and the projectile.
+#include <string>
+
 #include "case_config.hpp"
 #include "material_factory.hpp"
 #include "solver/explicit_solver.hpp"
@@ -10,6 +12,11 @@ namespace uhpc::macro {
 // The target's particle count before it is built (exact for a box, estimated for a disc).
 double estimated_particle_count(const TargetSettings& target);
 ParticleBody make_target_body(const TargetSettings& target);
+// The inputs that count comes from, with their values, for messages: "target.size_m = [...] m, target.spacing_m
+// = 0.004 m" (a box) or the disc's radius, thickness and spacings.
+std::string particle_count_inputs(const TargetSettings& target);
+// The spacing inputs alone: "target.spacing_m = 0.004 m", or the disc's "target.h_axis_m = ..., target.h_rim_m = ...".
+std::string spacing_inputs(const TargetSettings& target);
 
 // The rim band held by a fixed or framed rim: particles within rim_width of the lateral boundary (|x|
 // or |y| near the box's sides; r near the disc's radius). Empty for a free rim.

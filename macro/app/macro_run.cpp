@@ -21,6 +21,7 @@
 #include "uhpc/atomic_file.hpp"
 #include "uhpc/config.hpp"
 #include "uhpc/errors.hpp"
+#include "uhpc/output_lock.hpp"
 #include "uhpc/parallel.hpp"
 #include "uhpc/progress.hpp"
 #include "uhpc/provenance.hpp"
@@ -124,31 +125,41 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
 
 // A run is refused before it starts when its first stable step would need more than run.max_steps
 // steps to reach the end time (a density of 1e-300 gave a step of exactly 0 and a run that never
-// advanced; a bulk modulus of 1e300 or a speed of 1e9 m/s, runs of days).
-void refuse_beyond_budget(const Config& cfg, const RunSettings& run, double first_step) {
+// advanced; a bulk modulus of 1e300 or a speed of 1e9 m/s, runs of days). The message names the inputs
+// the step comes from (the material's wave speed, the spacing, the sphere's speed, the CFL number) beside
+// the guard's key, since those, not the guard, are what a user mistyped.
+void refuse_beyond_budget(const Config& cfg, const CaseSettings& settings, double first_step,
+                          const std::string& wave_speed_inputs) {
   const Config r = cfg.section("run");
+  const RunSettings& run = settings.run;
+  const std::string inputs =
+      fmt::format("the step comes from the wave speed ({}), the spacing ({}), the sphere's speed "
+                  "(projectile.velocity_m_s = {:g} m/s) and solver.cfl = {:g}",
+                  wave_speed_inputs, spacing_inputs(settings.target), settings.projectile.velocity_m_s, settings.solver.cfl);
   if (!(first_step > 0.0) || !std::isfinite(first_step))
-    r.fail("end_time_s", fmt::format("the first stable step is {:.3e} s: the run cannot advance (check the "
-                                     "material's density and moduli and the particle spacing)", first_step));
+    r.fail("end_time_s", fmt::format("the first stable step is {:.3e} s: the run cannot advance ({})", first_step,
+                                     inputs));
   const double steps = run.end_time_s / first_step;
   if (steps > static_cast<double>(run.max_steps))
     r.fail("max_steps", fmt::format("the run would take about {:.3g} steps of {:.3e} s to reach end_time_s = {:.3e} s, "
-                                    "more than max_steps = {} (check the material's density and moduli, the "
-                                    "projectile's speed and the particle spacing, or raise max_steps)",
-                                    steps, first_step, run.end_time_s, run.max_steps));
+                                    "more than max_steps = {} (raise max_steps or check the inputs: {})",
+                                    steps, first_step, run.end_time_s, run.max_steps, inputs));
 }
 
 // A target of more than run.max_particles particles is refused before it is built (a 1 nm spacing
 // asked for 1e23 particles). The memory figure is the shipped disc's measured peak, about 12 kB a particle
-// at support 2.5 h (80 000 and 158 000 particles: 0.93 and 1.9 GB), scaled by the count.
+// at support 2.5 h (80 000 and 158 000 particles: 0.93 and 1.9 GB), scaled by the count. The message
+// names the target's inputs the count comes from.
 void refuse_beyond_size_budget(const Config& cfg, const CaseSettings& settings) {
   constexpr double kBytesPerParticle = 12e3;
   const double n = estimated_particle_count(settings.target);
   if (n > static_cast<double>(settings.run.max_particles))
     cfg.section("run").fail(
-        "max_particles", fmt::format("the target would hold about {:.3g} particles (about {:.3g} GiB of memory), more "
-                                     "than max_particles = {} (check the target's size and spacing, or raise max_particles)",
-                                     n, n * kBytesPerParticle / (1u << 30), settings.run.max_particles));
+        "max_particles", fmt::format("the target would hold about {:.3g} particles (about {:.3g} GiB of memory) with {}, "
+                                     "more than max_particles = {} (check the target's size and spacing, or raise "
+                                     "max_particles)",
+                                     n, n * kBytesPerParticle / (1u << 30), particle_count_inputs(settings.target),
+                                     settings.run.max_particles));
 }
 
 // --reuse: true when `result` holds a finished run of the inputs whose hash is `hash`; false when there is
@@ -213,9 +224,13 @@ void run_macro(const MacroRunArgs& args) {
                                                         "a restart carries a run on to a later end time",
                                                         solver.time(), settings.run.end_time_s));
   }
-  refuse_beyond_budget(cfg, settings.run, solver.dt());
-  // Every check has passed: only now are the previous run's outputs replaced.
-  fs::create_directories(args.out);
+  refuse_beyond_budget(cfg, settings, solver.dt(), material.wave_speed_inputs);
+  // Every check has passed: only now are the previous run's outputs replaced, by this run alone (a second
+  // run given the same --out stops here with exit 2 naming this one).
+  const OutputLock lock = lock_output_directory(args.out, "uhpc-macro");
+  for (const char* name : {"result.json", "diagnostic.json", "history.csv", "config.json", "checkpoint.h5", "fields.h5",
+                           "fields.xdmf", "sphere.h5", "sphere.xdmf"})
+    require_file_path(args.out / name);
   for (const char* stale : {"result.json", "diagnostic.json"}) fs::remove(args.out / stale);
   if (!resumed) {
     for (const char* stale : {"history.csv", "config.json", "checkpoint.h5"}) fs::remove(args.out / stale);

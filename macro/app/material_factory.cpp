@@ -1,6 +1,8 @@
 #include "material_factory.hpp"
 
 #include <filesystem>
+
+#include <fmt/format.h>
 #include <utility>
 
 #include "materials/afc_config.hpp"
@@ -55,20 +57,32 @@ AfcParams read_afc(const Config& block, const std::optional<SdelHandoff>& sdel, 
   return p;
 }
 
+std::string elastic_inputs(const ElasticParams& p) {
+  return fmt::format("material.density_kg_m3 = {:g}, material.bulk_modulus_Pa = {:g}, material.shear_modulus_Pa = {:g}",
+                     p.density_kg_m3, p.bulk_modulus_Pa, p.shear_modulus_Pa);
+}
+
 }  // namespace
 
 MaterialChoice make_material(const Config& block, std::size_t n, const std::optional<SdelHandoff>& sdel) {
   const std::string model = block.choice("model", {"elastic", "j2", "afc"});
   if (model == "elastic") {
-    return {make_material_set(ElasticMaterial(read_elastic(block)), n), model, false, {}};
+    const ElasticParams p = read_elastic(block);
+    return {make_material_set(ElasticMaterial(p), n), model, false, {}, elastic_inputs(p)};
   }
   if (model == "afc") {
     MaterialInputs inputs;
     const AfcParams params = read_afc(block, sdel, inputs);
-    return {make_material_set(AfcMaterial(params), n), model, true, std::move(inputs)};
+    const std::string speed = fmt::format("density_kg_m3 = {:g}, shear_modulus_Pa = {:g}, C6_Pa = {:g} and C7 = {:g} "
+                                          "(bulk modulus C6/C7) of material.constants_file {}",
+                                          params.density_kg_m3, params.shear_modulus_Pa, params.C6_Pa, params.C7,
+                                          inputs.files_read.front());
+    return {make_material_set(AfcMaterial(params), n), model, true, std::move(inputs), speed};
   }
   // model == "j2" (the choice above admits nothing else). Neither elastic nor J2 uses the SDEL.
-  return {make_material_set(J2Material(read_j2(block)), n), model, false, {}};
+  const J2Params p = read_j2(block);
+  return {make_material_set(J2Material(p), n), model, false, {},
+          elastic_inputs({p.density_kg_m3, p.bulk_modulus_Pa, p.shear_modulus_Pa})};
 }
 
 std::vector<std::string> law_output_fields(const MaterialSet& set) {

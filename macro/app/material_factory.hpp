@@ -31,6 +31,9 @@ struct MaterialChoice {
   std::string model;   // the block's "model"
   bool uses_sdel = false;  // the law took the handoff
   MaterialInputs inputs;
+  // The inputs that set the law's wave speed (hence the stable step), with their values, for the
+  // messages of the run's guards: "material.density_kg_m3 = 1e-300, material.bulk_modulus_Pa = ...".
+  std::string wave_speed_inputs;
 };
 
 MaterialChoice make_material(const Config& block, std::size_t particles, const std::optional<SdelHandoff>& sdel);

@@ -84,6 +84,24 @@ uhpc_calibrate_bad_case(calibrate_no_softening
 uhpc_calibrate_bad_case(calibrate_misspelt_override
   "error: ${CMAKE_SOURCE_DIR}/data/calibrate.json: key 'weigthing': unknown key (did you mean 'weighting'?)"
   ${CAL_EXE} --ensemble ${BAD}/valid.h5 --set weigthing=spread --out ${BAD}/out/sdel.json)
+# An unusable --out is bad input found before the fit (issue 48: exit 1 "internal error" after the fit).
+uhpc_calibrate_bad_case(calibrate_out_is_a_directory
+  "error: tests/regression/calibrate_bad_inputs: is a directory, not a file that can be written"
+  ${CAL_EXE} --ensemble ${BAD}/valid.h5 --out tests/regression/calibrate_bad_inputs)
+uhpc_calibrate_bad_case(calibrate_synthesize_out_is_a_directory
+  "error: tests/regression/calibrate_bad_inputs: is a directory, not a file that can be written"
+  ${CAL_EXE} synthesize --sdel data/sdel_paper.json --out tests/regression/calibrate_bad_inputs)
+uhpc_calibrate_bad_case(calibrate_synthesize_out_under_proc
+  "error: /proc/uhpc/ensemble.h5: cannot create the directory '/proc/uhpc': No such file or directory"
+  ${CAL_EXE} synthesize --sdel data/sdel_paper.json --out /proc/uhpc/ensemble.h5)
+uhpc_calibrate_bad_case(calibrate_synthesize_out_in_proc
+  "error: /proc/ensemble.h5: cannot create the lock file '/proc/.ensemble.h5.lock': No such file or directory"
+  ${CAL_EXE} synthesize --sdel data/sdel_paper.json --out /proc/ensemble.h5)
+# A second writer of the same --out is refused, naming the holder (issue 48).
+uhpc_calibrate_bad_case(calibrate_output_in_use
+  "error: ${BAD}/locked/sdel.json: in use by pid 4242 (a test holding the lock) on host ctest since 2026-12-06T16:00:00Z: wait for it to end or write elsewhere (lock file ${BAD}/locked/.sdel.json.lock)"
+  ${CMAKE_CURRENT_SOURCE_DIR}/hold_lock.sh ${BAD}/locked/.sdel.json.lock
+  ${CAL_EXE} --ensemble ${BAD}/valid.h5 --out ${BAD}/locked/sdel.json)
 uhpc_calibrate_bad_case(calibrate_missing_ensemble_option
   "error: --ensemble is required"
   ${CAL_EXE} --out ${BAD}/out/sdel.json)

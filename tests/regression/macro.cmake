@@ -40,6 +40,26 @@ uhpc_bad_input_case(NAME macro_zero_output_interval
 uhpc_bad_input_case(NAME macro_missing_out
   STDERR "error: --out is required"
   COMMAND ${_macro} --config data/macro_elastic_block.json)
+# The size and step guards name the inputs that made their estimate absurd beside their own key (issue 48).
+uhpc_bad_input_case(NAME macro_particles_beyond_the_budget
+  STDERR "error: data/macro_elastic_block.json: key 'run.max_particles': the target would hold about 3.69e+10 particles (about 4.12e+05 GiB of memory) with target.size_m = [0.048, 0.048, 0.016] m, target.spacing_m = 1e-05 m, more than max_particles = 2000000 (check the target's size and spacing, or raise max_particles)"
+  COMMAND ${_macro} ${_macro_case} --set target.spacing_m=1e-5)
+uhpc_bad_input_case(NAME macro_steps_beyond_the_budget
+  STDERR "error: data/macro_elastic_block.json: key 'run.max_steps': the run would take about 7.42e+146 steps of 8.089e-152 s to reach end_time_s = 6.000e-05 s, more than max_steps = 1000000 (raise max_steps or check the inputs: the step comes from the wave speed (material.density_kg_m3 = 2555.7, material.bulk_modulus_Pa = 1e+300, material.shear_modulus_Pa = 1.8457e+10), the spacing (target.spacing_m = 0.004 m), the sphere's speed (projectile.velocity_m_s = 100 m/s) and solver.cfl = 0.4)"
+  COMMAND ${_macro} ${_macro_case} --set material.bulk_modulus_Pa=1e300)
+uhpc_bad_input_case(NAME macro_step_of_zero
+  STDERR "error: data/macro_elastic_block.json: key 'run.end_time_s': the first stable step is 0.000e+00 s: the run cannot advance (the step comes from the wave speed (material.density_kg_m3 = 1e-300, material.bulk_modulus_Pa = 2.20704e+10, material.shear_modulus_Pa = 1.8457e+10), the spacing (target.spacing_m = 0.004 m), the sphere's speed (projectile.velocity_m_s = 100 m/s) and solver.cfl = 0.4)"
+  COMMAND ${_macro} ${_macro_case} --set material.density_kg_m3=1e-300)
+# An output directory holding a directory named like a result file is bad input, not an internal error, and
+# a second writer of an output directory is refused, naming the holder (issue 48).
+uhpc_bad_input_case(NAME macro_directory_named_fields_h5
+  STDERR "error: ${UHPC_REGRESSION_OUT}/bad_fields/fields.h5: is a directory, not a file that can be written"
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/with_directory.sh ${UHPC_REGRESSION_OUT}/bad_fields/fields.h5
+          ${_macro} --config data/macro_elastic_block.json --out ${UHPC_REGRESSION_OUT}/bad_fields)
+uhpc_bad_input_case(NAME macro_output_in_use
+  STDERR "error: ${UHPC_REGRESSION_OUT}/bad_locked: in use by pid 4242 (a test holding the lock) on host ctest since 2026-12-06T16:00:00Z: wait for it to end or write elsewhere (lock file ${UHPC_REGRESSION_OUT}/bad_locked/.uhpc.lock)"
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/hold_lock.sh ${UHPC_REGRESSION_OUT}/bad_locked/.uhpc.lock
+          ${_macro} --config data/macro_elastic_block.json --out ${UHPC_REGRESSION_OUT}/bad_locked)
 uhpc_bad_input_case(NAME macro_afc_needs_constants_file
   STDERR "error: data/macro_elastic_block.json: key 'material.constants_file': required key is missing"
   COMMAND ${_macro} ${_macro_case} --set material.model=afc)
@@ -81,6 +101,13 @@ uhpc_bad_input_case(NAME compare_shots_spread_mixed_shots
 uhpc_bad_input_case(NAME compare_shots_missing_out
   STDERR "error: --out is required"
   COMMAND ${_cmp} --results ${_cmp_dir}/v610)
+
+# An empty VELOCITIES reached uhpc-compare-shots as "--results --out DIR" and was reported as "--out is
+# required" (issue 48): the sweep now stops before anything runs (no build, no run), exit 2, naming the variable.
+add_test(NAME regression.bad_input.pipelines_sweep_empty_velocities
+         COMMAND sh -c "make -C ${PROJECT_SOURCE_DIR}/pipelines --no-print-directory sweep VELOCITIES= OUT=${UHPC_REGRESSION_OUT}/bad 2>&1; echo exit=$?")
+set_tests_properties(regression.bad_input.pipelines_sweep_empty_velocities PROPERTIES LABELS regression
+  PASS_REGULAR_EXPRESSION "^Makefile:[0-9]+: \\*\\*\\* sweep: VELOCITIES is empty: give the impact velocities to run in m/s, e\\.g\\. VELOCITIES=\"610 817\"\\.  Stop\\.\nexit=2\n$")
 
 # Without --require-experiments a shot off every experiment (700 m/s) is listed, outside the statistics,
 # and an experiment without a shot (1112 m/s) is named in the notes.

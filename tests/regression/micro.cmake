@@ -30,8 +30,21 @@ uhpc_bad_input_case(NAME micro_truncation_below_gamma
   STDERR "error: data/microstructure.json: key 'burr.truncation_m': value 5e-05 must exceed gamma_m = 7.7e-05 (the smallest pore)"
   COMMAND ${_micro} generate --config data/micro_cell.json --set microstructure.burr.truncation_m=5e-5 --out ${_bad})
 uhpc_bad_input_case(NAME micro_cell_too_small
-  STDERR "error: data/micro_cell.json: key 'cell_size_m': cell side 0.0003 m cannot hold the smallest pore (7.7e-05 m) with two ligaments of 0.00015 m"
-  COMMAND ${_micro} generate --config data/micro_cell.json --set cell_size_m=0.0003 --out ${_bad})
+  STDERR "error: data/micro_cell.json: key 'cell_size_m': cell side 0.00035 m cannot hold the smallest pore (7.7e-05 m) with two ligaments of 0.00015 m (placement.min_ligament_m)"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set cell_size_m=0.00035 --out ${_bad})
+# Two ligaments as wide as the cell: the ligament is named, not the cell's size (issue 48).
+uhpc_bad_input_case(NAME micro_ligament_wider_than_the_cell
+  STDERR "error: data/micro_cell.json: key 'placement.min_ligament_m': value 1 leaves no room for a pore: two ligaments of 1 m are as wide as the cell side 0.003 m (cell_size_m) or wider"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set placement.min_ligament_m=1 --out ${_bad})
+# A misspelt command is named, with the closest one (issue 48: "A subcommand is required" named nothing).
+uhpc_bad_input_case(NAME micro_misspelt_subcommand
+  STDERR "error: 'generat' is not one of uhpc-micro's commands: elastic, ensemble, generate, generate-ensemble, run (did you mean 'generate'?)"
+  COMMAND ${_micro} generat --config data/micro_cell.json --out ${_bad})
+# A second writer of an output directory is refused, naming the holder (issue 48).
+uhpc_bad_input_case(NAME micro_output_in_use
+  STDERR "error: ${_bad}/micro_locked: in use by pid 4242 (a test holding the lock) on host ctest since 2026-12-06T16:00:00Z: wait for it to end or write elsewhere (lock file ${_bad}/micro_locked/.uhpc.lock)"
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/hold_lock.sh ${_bad}/micro_locked/.uhpc.lock
+          ${_micro} generate --config data/micro_cell.json --out ${_bad}/micro_locked)
 uhpc_bad_input_case(NAME micro_porosity_unreachable
   STDERR "error: data/microstructure.json: key 'area_porosity': porosity 0.0002 +- 1e-05 is unreachable: one smallest pore (7.7e-05 m) alone gives 0.00052"
   COMMAND ${_micro} generate --config data/micro_cell.json --set microstructure.area_porosity=0.0002
@@ -45,9 +58,13 @@ uhpc_bad_input_case(NAME micro_ensemble_bad_cell_override
 uhpc_bad_input_case(NAME micro_ensemble_sizes_share_a_directory
   STDERR "error: data/micro_ensemble.json: key 'cell_sizes_m': entries 0 and 2 share the directory name size_3.0mm (sizes must differ by at least 0.1 mm)"
   COMMAND ${_micro} generate-ensemble --config data/micro_ensemble.json --set cell_sizes_m=[0.003,0.0045,0.00301] --out ${_bad})
+# The guard's key and the input that made the estimate absurd (issue 48: the cell's size was not named).
 uhpc_bad_input_case(NAME micro_cell_beyond_the_mesh_budget
-  STDERR "error: data/micro_cell.json: key 'discretization.nominal_spacing_m': a cell of side 1 m at spacing 5e-05 m needs about 4.6e+08 mesh nodes, more than the 2e+06 a cell may have"
-  COMMAND ${_micro} generate --config data/micro_cell.json --set cell_size_m=1 --out ${_bad})
+  STDERR "error: data/micro_cell.json: key 'discretization.nominal_spacing_m': a cell of side 10 m (cell_size_m) at spacing 5e-05 m needs about 4.6e+10 mesh nodes, more than the 2e+06 a cell may have (reduce cell_size_m or raise nominal_spacing_m)"
+  COMMAND ${_micro} generate --config data/micro_cell.json --set cell_size_m=10 --out ${_bad})
+uhpc_bad_input_case(NAME micro_ensemble_size_beyond_the_mesh_budget
+  STDERR "error: data/micro_cell.json: key 'discretization.nominal_spacing_m': a cell of side 10 m (the ensemble's cell_sizes_m) at spacing 5e-05 m needs about 4.6e+10 mesh nodes, more than the 2e+06 a cell may have (reduce the ensemble's cell_sizes_m or raise nominal_spacing_m)"
+  COMMAND ${_micro} generate-ensemble --config data/micro_ensemble.json --set cell_sizes_m=[0.003,10] --out ${_bad})
 
 # --- uhpc-micro ensemble: a part of the ensemble (--only-size, --only-cell) or its assembly only ---
 uhpc_bad_input_case(NAME micro_ensemble_only_size_not_in_the_ensemble
@@ -59,6 +76,16 @@ uhpc_bad_input_case(NAME micro_ensemble_only_cell_out_of_range
 uhpc_bad_input_case(NAME micro_ensemble_only_cell_not_a_number
   STDERR "error: Could not convert: --only-cell = first"
   COMMAND ${_micro} ensemble --config data/micro_analysis_ensemble.json --only-cell first --out ${_bad})
+# One writer per ensemble directory for a run over every cell, one per cell for the runs of a part (the
+# batch jobs of one ensemble share its directory): a second writer is refused, naming the holder.
+uhpc_bad_input_case(NAME micro_ensemble_in_use
+  STDERR "error: ${_bad}/ensemble_locked: in use by pid 4242 (a test holding the lock) on host ctest since 2026-12-06T16:00:00Z: wait for it to end or write elsewhere (lock file ${_bad}/ensemble_locked/.uhpc.lock)"
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/hold_lock.sh ${_bad}/ensemble_locked/.uhpc.lock
+          ${_micro} ensemble --config data/micro_analysis_ensemble.json --out ${_bad}/ensemble_locked)
+uhpc_bad_input_case(NAME micro_ensemble_cell_in_use
+  STDERR "error: ${_bad}/cell_locked/size_3.0mm/cell_00: in use by pid 4242 (a test holding the lock) on host ctest since 2026-12-06T16:00:00Z: wait for it to end or write elsewhere (lock file ${_bad}/cell_locked/size_3.0mm/cell_00/.uhpc.lock)"
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/hold_lock.sh ${_bad}/cell_locked/size_3.0mm/cell_00/.uhpc.lock
+          ${_micro} ensemble --config data/micro_analysis_ensemble.json --only-size 3 --only-cell 0 --out ${_bad}/cell_locked)
 uhpc_bad_input_case(NAME micro_ensemble_assemble_only_with_a_part
   STDERR "error: --only-cell excludes --assemble-only"
   COMMAND ${_micro} ensemble --config data/micro_analysis_ensemble.json --assemble-only --only-cell 0 --out ${_bad})

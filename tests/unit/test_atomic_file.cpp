@@ -102,10 +102,11 @@ TEST_F(AtomicFileTest, TemporariesOfKilledWritersAreRemovedByTheNextWriter) {
 }
 
 TEST_F(AtomicFileTest, FailedRenameRemovesTemporary) {
-  // The target is an existing non-empty directory, so the final rename fails.
+  // The target is an existing non-empty directory, so the final rename fails: bad input (exit 2), the
+  // user's path to fix, not an internal error (issue 48).
   const fs::path target = dir_ / "taken";
   fs::create_directories(target / "inside");
-  EXPECT_THROW(uhpc::write_text_atomic(target, "data"), std::runtime_error);
+  EXPECT_THROW(uhpc::write_text_atomic(target, "data"), uhpc::InputError);
   EXPECT_FALSE(fs::exists(uhpc::temporary_path_for(target)));
 }
 

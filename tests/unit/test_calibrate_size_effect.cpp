@@ -23,6 +23,22 @@ TEST(CalibrateSizeEffect, RecoversTheLawFromExactStrengths) {
   EXPECT_NEAR(f.r_squared, 1.0, 1e-12);
 }
 
+// Values worked by hand, not made by the law under test: with B = 0.6, D0 = 4 mm and f_t = 22.7 MPa,
+// 1 + D / D0 is 4, 9 and 16 at D = 12, 32 and 60 mm, so sigma_N = 0.6 x 22.7 / 2, / 3 and / 4 MPa = 6.81,
+// 4.54 and 3.405 MPa exactly; at D = D0, 13.62 / sqrt(2) = 9.630794359761 MPa.
+TEST(CalibrateSizeEffect, LawAndFitAgainstHandValues) {
+  EXPECT_NEAR(size_effect_strength(0.6, kFt, 0.004, 0.012), 6.81e6, 1e-8);
+  EXPECT_NEAR(size_effect_strength(0.6, kFt, 0.004, 0.032), 4.54e6, 1e-8);
+  EXPECT_NEAR(size_effect_strength(0.6, kFt, 0.004, 0.004), 9.630794359761e6, 1e-5);
+  const SizeEffectFit f = fit_size_effect({0.012, 0.032, 0.06}, {6.81e6, 4.54e6, 3.405e6}, kFt);
+  ASSERT_TRUE(f.size_effect);
+  EXPECT_NEAR(f.B, 0.6, 1e-9);
+  EXPECT_NEAR(f.D0_m, 0.004, 1e-11);
+  EXPECT_LT(f.rms_Pa, 1e-3);
+  ASSERT_EQ(f.fitted_Pa.size(), 3u);
+  EXPECT_NEAR(f.fitted_Pa[2], 3.405e6, 1e-3);
+}
+
 TEST(CalibrateSizeEffect, WithinThreeStandardErrorsUnderNoise) {
   std::mt19937_64 rng(9);
   std::normal_distribution<double> noise(0.0, 0.01);

@@ -223,6 +223,43 @@ TEST(Cli, HelpOfASubcommand) {
   EXPECT_NE(outcome.out.find("--set"), std::string::npos) << outcome.out;
 }
 
+// A program whose first word must be one of its commands (uhpc-micro): a misspelt one is named, with the
+// closest command and the list; a parse that fails otherwise keeps CLI11's message.
+Outcome run_commands_program(std::vector<std::string> args, std::size_t required_min) {
+  CLI::App app{"test program", "uhpc-test"};
+  app.require_subcommand(required_min, 1);
+  bool quiet = false;
+  app.add_flag("-q", quiet, "quiet");
+  std::string config;
+  for (const char* name : {"generate", "generate-ensemble", "run"})
+    app.add_subcommand(name, "a command")->add_option("--config", config, "configuration file");
+  args.insert(args.begin(), "uhpc-test");
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  return run_captured(app, [&] {
+    app.parse(static_cast<int>(argv.size()), argv.data());
+    return 0;
+  });
+}
+
+TEST(Cli, MisspeltSubcommandIsNamed) {
+  const std::string list = " is not one of uhpc-test's commands: generate, generate-ensemble, run";
+  Outcome o = run_commands_program({"generat", "--config", "x.json"}, 1);
+  EXPECT_EQ(o.code, kExitBadInput);
+  EXPECT_EQ(o.err, "error: 'generat'" + list + " (did you mean 'generate'?)\n");
+  o = run_commands_program({"-q", "rnu"}, 1);
+  EXPECT_EQ(o.err, "error: 'rnu'" + list + " (did you mean 'run'?)\n");
+  o = run_commands_program({"simulate"}, 0);  // a subcommand is optional: CLI11 called it unexpected
+  EXPECT_EQ(o.err, "error: 'simulate'" + list + "\n");
+  o = run_commands_program({}, 1);
+  EXPECT_EQ(o.err, "error: A subcommand is required\n");
+  o = run_commands_program({"--bogus"}, 1);
+  EXPECT_EQ(o.code, kExitBadInput);
+  EXPECT_EQ(o.err.find("error: '"), std::string::npos) << o.err;
+  o = run_commands_program({"run", "--config"}, 1);  // the command is known: its own error stands
+  EXPECT_EQ(o.err.rfind("error: --config", 0), 0u) << o.err;
+}
+
 TEST(Cli, VersionExitsZero) {
   Program program;
   program.app.set_version_flag("--version", "uhpc-test 0.1.0");

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include <Eigen/Eigenvalues>
@@ -351,7 +352,16 @@ void tension_to_full_damage_and_back(const AfcParams& p) {
   EXPECT_GT(pt.state().mu, 0.0);
   EXPECT_EQ(pt.state().d_plus, 1.0);
   EXPECT_EQ(pt.state().tensile_strain_max, kappa);
-  EXPECT_LT(pt.state().stress(0, 0), -5 * MPa);  // compression is carried again
+  // Compression is carried again, elastically: in uniaxial strain sigma_xx = -(K_e + 4G/3) mu to first
+  // order in mu, K_e = C6/C7 (-23.33 and -23.32 MPa measured for both parameter sets at mu = 4.99e-4,
+  // against 23.31 MPa; 1 % admits the hydrostat's second order). The bound was -10 MPa and then -5 MPa with
+  // no reason given; this asserts the value the closed crack must carry.
+  const double uniaxial_modulus = p.C6_Pa / p.C7 + 4.0 / 3.0 * p.shear_modulus_Pa;
+  const double closed = -uniaxial_modulus * pt.state().mu;
+  std::printf("closed again: sigma_xx %.4f MPa, -(K_e + 4G/3) mu = %.4f MPa (mu %.3e)\n",
+              pt.state().stress(0, 0) / MPa, closed / MPa, pt.state().mu);
+  EXPECT_NEAR(pt.state().stress(0, 0), closed, 0.01 * std::abs(closed));
+  EXPECT_LT(pt.state().stress(0, 0), -20 * MPa);
   for (int i = 0; i < 600; ++i) {
     pt.strain_step(Mat3::Identity() * 5e-6, dt);
     for (int r = 0; r < 3; ++r)

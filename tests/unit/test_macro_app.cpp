@@ -127,7 +127,11 @@ TEST_F(MacroApp, FixedRimReactionsCloseTheMomentumBalance) {
               "worst energy balance error %.3e\n",
               impulse_z, r.at("momentum").at("worst_balance_error").get<double>(),
               r.at("energy").at("worst_balance_error").get<double>());
-  EXPECT_LT(impulse_z, -1e-4);  // the rim holds the block back
+  // The rim holds the block back with -0.550 N s by 20 us (measured -0.55002 with the kinematic contact;
+  // -0.377 with the penalty contact before it). The run is deterministic, so 2 % admits only another
+  // compiler's round-off: a change of the contact, the solver or the rim that moves it more is a result to
+  // re-measure and state in macro/README.md, not noise.
+  EXPECT_NEAR(impulse_z, -0.550, 0.011);
   EXPECT_LT(r.at("momentum").at("worst_balance_error").get<double>(), 1e-8);
   EXPECT_LT(r.at("energy").at("worst_balance_error").get<double>(), 5e-3);
 }

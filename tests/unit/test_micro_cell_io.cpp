@@ -76,16 +76,21 @@ TEST(microCellIo, BadInputNamesFileKeyAndReason) {
   EXPECT_EQ(error({"microstructure.burr.alpha=0"}), kMicro + ": key 'burr.alpha': value 0 is out of range, must be > 0");
   EXPECT_EQ(error({"microstructure.burr.truncation_m=7e-5"}),
             kMicro + ": key 'burr.truncation_m': value 7e-05 must exceed gamma_m = 7.7e-05 (the smallest pore)");
+  EXPECT_EQ(error({"cell_size_m=0.00035"}),
+            kCellConfig + ": key 'cell_size_m': cell side 0.00035 m cannot hold the smallest pore (7.7e-05 m) with two "
+                          "ligaments of 0.00015 m (placement.min_ligament_m)");
+  // Two ligaments as wide as the cell leave no room at any pore size: the ligament is named (issue 48).
   EXPECT_EQ(error({"cell_size_m=0.0003"}),
-            kCellConfig + ": key 'cell_size_m': cell side 0.0003 m cannot hold the smallest pore (7.7e-05 m) with two "
-                          "ligaments of 0.00015 m");
+            kCellConfig + ": key 'placement.min_ligament_m': value 0.00015 leaves no room for a pore: two ligaments "
+                          "of 0.00015 m are as wide as the cell side 0.0003 m (cell_size_m) or wider");
   EXPECT_EQ(error({"seeds.length_m=1e-4"}),
             kCellConfig + ": key 'seeds.length_m': value 0.0001 must be below half of "
                           "placement.min_ligament_m (0.00015), so that seeds cannot reach another pore, seed or edge");
   // Beyond the mesh budget (2e6 nodes) before gmsh is asked: a 1 m cell, a 10 nm spacing.
   EXPECT_EQ(error({"cell_size_m=1.0"}),
-            kCellConfig + ": key 'discretization.nominal_spacing_m': a cell of side 1 m at spacing 5e-05 m needs "
-                          "about 4.6e+08 mesh nodes, more than the 2e+06 a cell may have");
+            kCellConfig + ": key 'discretization.nominal_spacing_m': a cell of side 1 m (cell_size_m) at spacing "
+                          "5e-05 m needs about 4.6e+08 mesh nodes, more than the 2e+06 a cell may have (reduce "
+                          "cell_size_m or raise nominal_spacing_m)");
   EXPECT_NE(error({"discretization.nominal_spacing_m=1e-8"}).find("mesh nodes, more than the 2e+06"), std::string::npos);
   EXPECT_EQ(error({"loading_direction=z"}), kCellConfig + ": key 'loading_direction': value 'z' is not one of: x, y");
   EXPECT_EQ(error({"placement.min_ligament=3"}),

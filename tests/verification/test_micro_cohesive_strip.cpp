@@ -32,6 +32,16 @@ CellMaterial table2() {
   return m;
 }
 
+// Tolerances of the straight strip's checks below. The damage never fell between states on any path
+// (measured 0 exactly): only round-off is admitted. The variants' peak is the default path's to the bit
+// (the crack activates at f_t on every path); their dissipation at separation is 0.26 % above the default
+// path's (measured +2.63e-3 with the process zone at every step or growth at zero load, +2.5e-5 with VCI),
+// because the default path declares separation at d = 0.99956, short of the last 0.26 % of G_f L in the
+// softening law's tail, where the others go on to d = 0.99998: twice that is admitted.
+constexpr double kDamageRoundOff = 1e-12;
+constexpr double kSamePeak = 1e-12;
+constexpr double kSameDissipation = 5e-3;
+
 MeshOptions spacing(double h) {
   MeshOptions o;
   o.nominal_spacing_m = h;
@@ -98,7 +108,11 @@ TEST(microCohesiveStrip, RampedEnrichmentClosesAtTheTip) {
   EXPECT_GT(jump_at(0.2e-3), 0.05 * scale);         // behind the last segment: open
 }
 
-void check_straight_strip(const CellAnalysisOptions& o) {
+double peak_stress(const CellResponse& r);
+
+// Checks the straight strip's known answers under the options `o` and returns the response (for the
+// variants' comparison with the default path).
+CellResponse check_straight_strip(const CellAnalysisOptions& o) {
   const double L = 1e-3;
   CellGeometry g;
   g.side_m = L;
@@ -108,7 +122,8 @@ void check_straight_strip(const CellAnalysisOptions& o) {
   const CellMaterial m = table2();
   const CellResponse r = analyze_cell(g, mesh, m, o);
   print(r);
-  ASSERT_EQ(r.status, CellStatus::Separated) << r.diagnostic;
+  EXPECT_EQ(r.status, CellStatus::Separated) << r.diagnostic;
+  if (r.status != CellStatus::Separated) return r;
 
   double peak = 0.0;
   for (const CellState& s : r.states) peak = std::max(peak, s.sigma_bar_Pa);
@@ -140,11 +155,39 @@ void check_straight_strip(const CellAnalysisOptions& o) {
   if (o.enrichment.cracked_correction == IntegrationCorrection::None) {
     EXPECT_LT(r.operator_energy_mismatch, 1e-9);
   }
-  // Damage grows monotonically on the softening branch.
+  // Damage grows monotonically on the softening branch: from the crack's first segment to separation no
+  // loaded state has less damage than the one before it (states at zero strain, where the fallback has
+  // unloaded the strip, carry no secant damage and are skipped; an unloading state keeps its damage).
   EXPECT_TRUE(cracked);
+  double previous = 0.0, worst_drop = 0.0;
+  for (std::size_t k = 1; k < r.states.size(); ++k) {
+    const CellState& s = r.states[k];
+    if (s.crack_segments == 0 || !(s.strain > 0.0)) continue;
+    const double d = state_damage(r, s);
+    worst_drop = std::max(worst_drop, previous - d);
+    EXPECT_GE(d, previous - kDamageRoundOff) << "state " << k << " e_bar " << s.strain;
+    previous = std::max(previous, d);
+  }
+  std::printf("largest fall of the damage between states on the softening branch: %.2e\n", worst_drop);
   if (o.verification.unload_at_every_growth) {
     EXPECT_GT(r.growth_unloads, 5u);
   }
+  return r;
+}
+
+// The variants below follow the same path by other means, so they must give the default path's answer,
+// not only pass the same known-answer bands: the peak and the dissipation at separation against the
+// default run's, within kSamePeak and kSameDissipation (relative).
+void expect_same_answer(const CellResponse& variant) {
+  static const CellResponse reference = check_straight_strip(CellAnalysisOptions{});
+  ASSERT_EQ(variant.status, CellStatus::Separated);
+  ASSERT_EQ(reference.status, CellStatus::Separated);
+  const double peak_ratio = peak_stress(variant) / peak_stress(reference);
+  const double dissipated_ratio = variant.states.back().dissipated_J_m / reference.states.back().dissipated_J_m;
+  std::printf("against the default path: peak %+.2e, dissipated %+.2e (relative)\n", peak_ratio - 1.0,
+              dissipated_ratio - 1.0);
+  EXPECT_NEAR(peak_ratio, 1.0, kSamePeak);
+  EXPECT_NEAR(dissipated_ratio, 1.0, kSameDissipation);
 }
 
 // Every step on the process zone's opening (the test hook zone_at_every_step; the default uses it only
@@ -152,7 +195,7 @@ void check_straight_strip(const CellAnalysisOptions& o) {
 TEST(microCohesiveStrip, ProcessZoneControlGivesTheSameAnswer) {
   CellAnalysisOptions o;
   o.verification.zone_at_every_step = true;
-  check_straight_strip(o);
+  expect_same_answer(check_straight_strip(o));
 }
 
 TEST(microCohesiveStrip, StraightCrackDissipatesGfAndPeaksAtFt) { check_straight_strip(CellAnalysisOptions{}); }
@@ -162,7 +205,7 @@ TEST(microCohesiveStrip, StraightCrackDissipatesGfAndPeaksAtFt) { check_straight
 TEST(microCohesiveStrip, StraightCrackWithCrackedVciGivesTheSameAnswer) {
   CellAnalysisOptions o;
   o.enrichment.cracked_correction = IntegrationCorrection::Vci;
-  check_straight_strip(o);
+  expect_same_answer(check_straight_strip(o));
 }
 
 // Every growth event through the fallback (unload to zero, grow there, reload): the same peak,
@@ -170,7 +213,7 @@ TEST(microCohesiveStrip, StraightCrackWithCrackedVciGivesTheSameAnswer) {
 TEST(microCohesiveStrip, GrowingAtZeroLoadGivesTheSameAnswer) {
   CellAnalysisOptions o;
   o.verification.unload_at_every_growth = true;
-  check_straight_strip(o);
+  expect_same_answer(check_straight_strip(o));
 }
 
 // A strip longer than 2 l_ch (l_ch = E G_f / f_t^2 = 3.0 mm): the elastic energy stored at the peak

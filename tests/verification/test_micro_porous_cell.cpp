@@ -3,6 +3,7 @@
 // a figure: the work done equals stored + dissipated energy, d_energy = d_force (Hill-Mandel), and the
 // path stays in tension. The seed is a cell whose crack growth once landed it in compression (e = -2.3e-4
 // at -9.6 MPa in one step), which was then taken as separation. About a minute.
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -31,7 +32,12 @@ TEST_F(MicroPorousCell, GrowthNeverCrossesIntoCompressionAndEnergyBalances) {
   const nlohmann::json s = nlohmann::json::parse(in);
   EXPECT_EQ(s["diagnostic"], "reached max_strain");
   EXPECT_LT(std::abs(s["energy_balance_relative"].get<double>()), 0.02);
-  EXPECT_TRUE(s["bridging"]["within_tolerance"].get<bool>()) << s["bridging"].dump();
+  // The bridging identity d_energy = d_force holds to the solver's equilibrium tolerance: 3.9e-7 measured.
+  // The bound is this test's own (the shipped micro_run.json's bridging.tolerance, 1e-2, is a setting a
+  // user may change, and 25 000 times the measured value); 1e-5 leaves 25 times the measured value.
+  const double bridging = s["bridging"]["max_abs_difference"].get<double>();
+  std::printf("bridging: max |d_energy - d_force| = %.3e\n", bridging);
+  EXPECT_LT(bridging, 1e-5) << s["bridging"].dump();
   EXPECT_LT(s["operator_energy_mismatch"].get<double>(), 0.01);
   const H5Reader h5(dir_ / "curves.h5");
   const std::vector<double> strain = h5.read_doubles("states/strain").values;

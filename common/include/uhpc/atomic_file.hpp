@@ -13,12 +13,14 @@ namespace uhpc {
 std::filesystem::path temporary_path_for(const std::filesystem::path& target);
 
 // Writes `content` to `target` atomically (temporary file, write, fsync, rename). Creates missing
-// parent directories. Throws std::runtime_error naming the path and the OS reason on failure; the
-// temporary file is removed then.
+// parent directories. Throws InputError when the path is unusable (its directory cannot be made, the
+// temporary cannot be created, the target cannot be renamed onto) and std::runtime_error when a write or
+// flush fails, naming the path and the OS reason; the temporary file is removed then.
 void write_text_atomic(const std::filesystem::path& target, std::string_view content);
 
 // Renames a finished temporary file onto its target (used by writers that produce the file
-// themselves, e.g. HDF5). Throws std::runtime_error naming both paths on failure.
+// themselves, e.g. HDF5). Throws InputError naming both paths on failure (a directory of the target's
+// name in the way, no permission: an output path the user must fix).
 void commit_temporary(const std::filesystem::path& temporary, const std::filesystem::path& target);
 
 // Flushes a finished file's data to the storage device (fsync), so that a rename or an index that
