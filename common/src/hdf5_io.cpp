@@ -308,26 +308,28 @@ void check_fits_in_file(hid_t file, hssize_t count, std::size_t value_bytes, con
 
 // Fletcher32 sums 16-bit words modulo 65535, so it cannot tell a word 0x0000 from 0xffff: eight zero
 // bytes of a value overwritten with ff (a zero double become NaN) pass it. Every dataset therefore also
-// carries the 64-bit FNV-1a of its values as stored (the file type's little-endian bytes, so the digest
-// is the same on every machine) in the attribute below, inside its checksummed object header.
-constexpr const char* kDigestAttribute = "checksum_fnv1a64";
+// carries the 64-bit FNV-1a over the 64-bit words of its values as stored (the file type's little-endian
+// bytes, so the digest is the same on every machine; words, not bytes: 8x faster, and any change within
+// one word is always caught) in the attribute below, inside its checksummed object header.
+constexpr const char* kDigestAttribute = "checksum_fnv1a64_words";
 
 // The digest of `count` values of `memory_type` at `data`, taken over their bytes in `file_type`.
 std::string values_digest(hid_t memory_type, hid_t file_type, const void* data, std::size_t count,
                           const std::string& where) {
   const std::size_t bytes = count * H5Tget_size(file_type);
-  if (H5Tequal(memory_type, file_type) > 0) return fnv1a64_hex(std::string_view(static_cast<const char*>(data), bytes));
+  if (H5Tequal(memory_type, file_type) > 0)
+    return fnv1a64_words_hex(std::string_view(static_cast<const char*>(data), bytes));
   std::vector<char> converted(count * std::max(H5Tget_size(memory_type), H5Tget_size(file_type)));
   if (count > 0) std::memcpy(converted.data(), data, count * H5Tget_size(memory_type));
   if (count > 0 && H5Tconvert(memory_type, file_type, count, converted.data(), nullptr, H5P_DEFAULT) < 0)
     throw std::runtime_error(where + "cannot convert to its file type: " + hdf5_reason());
-  return fnv1a64_hex(std::string_view(converted.data(), bytes));
+  return fnv1a64_words_hex(std::string_view(converted.data(), bytes));
 }
 
-// A dataset of a checksummed file is read twice over: the library verifies its Fletcher32 sums, and its
-// values as stored must match its digest. A dataset without either was written by another program into
-// a file marked as ours.
-void verify_digest(hid_t file, hid_t dataset, hid_t file_type, hssize_t count, const std::string& where) {
+// A dataset of a checksummed file is verified twice over: the library checks its Fletcher32 sums while
+// reading, and its values as stored must match its digest. A dataset without either was written by
+// another program into a file marked as ours. Returns the digest written with the dataset.
+std::string written_digest(hid_t dataset, const std::string& where) {
   const htri_t has_digest = H5Aexists(dataset, kDigestAttribute);
   Handle dcpl(H5Dget_create_plist(dataset), H5Pclose);
   unsigned flags = 0;
@@ -338,15 +340,22 @@ void verify_digest(hid_t file, hid_t dataset, hid_t file_type, hssize_t count, c
   H5Eclear2(H5E_DEFAULT);
   if (has_digest <= 0 || !(fletcher || layout == H5D_COMPACT))
     throw std::runtime_error(where + "carries no checksum in a file marked as checksummed: the file was altered");
-  check_fits_in_file(file, count, H5Tget_size(file_type), where);
-  std::vector<char> stored(static_cast<std::size_t>(count) * H5Tget_size(file_type));
-  if (!stored.empty() && H5Dread(dataset, file_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, stored.data()) < 0)
-    throw std::runtime_error(where + "cannot read (corrupt storage or checksum mismatch): " + hdf5_reason());
   Handle attribute = open_attribute(dataset, kDigestAttribute, where);
-  const std::string expected = read_string_attribute(attribute.get(), where + "attribute '" + kDigestAttribute + "': ");
-  if (fnv1a64_hex(std::string_view(stored.data(), stored.size())) != expected)
-    throw std::runtime_error(where + "checksum mismatch: its values are not those written (attribute '" +
-                             kDigestAttribute + "')");
+  return read_string_attribute(attribute.get(), where + "attribute '" + kDigestAttribute + "': ");
+}
+
+// The digest of the values as stored, from `values` read as `memory_type` when that reading is exact
+// (the dataset's own type in native byte order: the usual case); otherwise the dataset is read once more
+// in that type (an integer dataset read as doubles).
+std::string read_digest(hid_t dataset, hid_t file_type, hid_t memory_type, const void* values, std::size_t count,
+                        const std::string& where) {
+  Handle native(H5Tget_native_type(file_type, H5T_DIR_ASCEND), H5Tclose);
+  if (!native) throw std::runtime_error(where + "cannot read its type: " + hdf5_reason());
+  if (H5Tequal(native.get(), memory_type) > 0) return values_digest(memory_type, file_type, values, count, where);
+  std::vector<char> stored(count * H5Tget_size(native.get()));
+  if (!stored.empty() && H5Dread(dataset, native.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, stored.data()) < 0)
+    throw std::runtime_error(where + "cannot read (corrupt storage or checksum mismatch): " + hdf5_reason());
+  return values_digest(native.get(), file_type, stored.data(), count, where);
 }
 
 template <typename T>
@@ -369,13 +378,17 @@ H5Array<T> read_array(const std::string& file_name, hid_t file, const std::strin
   array.dims.assign(extents.begin(), extents.end());
   const hssize_t count = H5Sget_simple_extent_npoints(space.get());
   check_fits_in_file(file, count, sizeof(T), where);
-  if (checksummed) verify_digest(file, dataset.get(), type.get(), count, where);
+  const std::string expected = checksummed ? written_digest(dataset.get(), where) : std::string();
   array.values.resize(static_cast<std::size_t>(std::max<hssize_t>(count, 0)));
   if (!array.values.empty() &&
       H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, array.values.data()) < 0) {
-    // A Fletcher32 mismatch ends here too ("filter returned failure during read").
+    // A Fletcher32 mismatch ends here too ("data error detected by Fletcher32 checksum").
     throw std::runtime_error(where + "cannot read (corrupt storage or checksum mismatch): " + hdf5_reason());
   }
+  if (checksummed &&
+      read_digest(dataset.get(), type.get(), memory_type, array.values.data(), array.values.size(), where) != expected)
+    throw std::runtime_error(where + "checksum mismatch: its values are not those written (attribute '" +
+                             kDigestAttribute + "')");
   return array;
 }
 

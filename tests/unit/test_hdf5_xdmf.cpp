@@ -22,6 +22,7 @@
 
 #include "test_support.hpp"
 #include "uhpc/atomic_file.hpp"
+#include "uhpc/hash.hpp"
 #include "uhpc/hdf5_io.hpp"
 #include "uhpc/xdmf.hpp"
 
@@ -436,6 +437,21 @@ TEST_F(H5Test, WrittenFilesCarryChecksumsThatEveryReadVerifies) {
   EXPECT_THAT(runtime_error_of([&] { H5Reader bad(file); }), HasSubstr(file.string() + ": cannot open as HDF5"));
 }
 
+// The datasets' digest: FNV-1a over 64-bit little-endian words, the tail byte by byte. Values computed
+// by hand (Python: h = ((h ^ w) * 0x100000001b3) % 2**64 from 0xcbf29ce484222325).
+TEST(Fnv1a64Words, MatchesHandComputedValuesAndCatchesAnyChangeWithinAWord) {
+  EXPECT_EQ(uhpc::fnv1a64_words_hex(""), "cbf29ce484222325");
+  EXPECT_EQ(uhpc::fnv1a64_words_hex(std::string("\x01\0\0\0\0\0\0\0ab", 10)), "d1139b1867863f8f");
+  EXPECT_EQ(uhpc::fnv1a64_words_hex("ab"), uhpc::fnv1a64_hex("ab"));  // no whole word: bytewise FNV-1a
+  std::string zeros(64, '\0');
+  const std::string intact = uhpc::fnv1a64_words_hex(zeros);
+  for (std::size_t word = 0; word < 8; ++word) {
+    std::string changed = zeros;
+    changed.replace(8 * word, 8, std::string(8, '\xff'));
+    EXPECT_NE(uhpc::fnv1a64_words_hex(changed), intact) << word;
+  }
+}
+
 // Fletcher32 sums 16-bit words modulo 65535 and cannot tell 0x0000 from 0xffff: a zero value overwritten
 // with ff x 8 (NaN) passes the library's check (shown with the library directly), and the dataset's own
 // digest refuses it.
@@ -465,7 +481,7 @@ TEST_F(H5Test, AZeroOverwrittenWithOnesPassesFletcher32AndIsCaughtByTheDigest) {
 
   EXPECT_EQ(runtime_error_of([&] { H5Reader(file).read_doubles("v"); }),
             file.string() + ": dataset 'v': checksum mismatch: its values are not those written (attribute "
-                            "'checksum_fnv1a64')");
+                            "'checksum_fnv1a64_words')");
 }
 
 // A file without checksums: refused where they are required (the program's own files read back), read

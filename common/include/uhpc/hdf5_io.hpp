@@ -23,8 +23,8 @@
 // read verifies. The file format is pinned to HDF5 1.10's (superblock v3, object headers, groups and
 // chunk indices with Jenkins checksums over all metadata, attributes included), every dataset with
 // values is chunked with the Fletcher32 filter (empty ones are compact: their shape is in the
-// checksummed object header) and carries the attribute "checksum_fnv1a64", the 64-bit FNV-1a of its
-// values as stored (Fletcher32 cannot tell a 16-bit word 0x0000 from 0xffff), and the root attribute
+// checksummed object header) and carries the attribute "checksum_fnv1a64_words", a 64-bit FNV-1a over
+// the words of its values as stored (Fletcher32 cannot tell a 16-bit word 0x0000 from 0xffff), and the root attribute
 // "checksums" marks the file as such. A mismatch is a std::runtime_error naming the file. Files without the mark (written before, or by another
 // program) are read only when the reader allows it (H5Checksums::optional), and only after a forked
 // child process has read every object of the file: corrupt metadata of the older formats can crash
