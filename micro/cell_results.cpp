@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "cell_io.hpp"
 #include "ensemble_curves.hpp"
@@ -135,6 +136,16 @@ std::mutex& hdf5_mutex() {
   return m;
 }
 
+// summary.json carries a checksum of its own values: the 64-bit FNV-1a of the compact dump of the document
+// without this key (object keys sorted, numbers in their shortest exact form, so that parsing the file and
+// dumping it again gives the same text).
+constexpr const char* kSummaryChecksumKey = "checksum_fnv1a64";
+
+std::string summary_checksum(nlohmann::json j) {
+  j.erase(kSummaryChecksumKey);
+  return fnv1a64_hex(j.dump());
+}
+
 std::optional<CellStatus> status_from_name(const std::string& s) {
   if (s == "step_limit") return CellStatus::ReachedEnd;  // its earlier name, in the archived cells
   for (CellStatus c : {CellStatus::Separated, CellStatus::ReachedEnd, CellStatus::Failed})
@@ -257,21 +268,50 @@ void write_cell_results(const fs::path& dir, const CellJob& job, const CellResul
   w.close();
   lock.unlock();
   // Last: a summary.json on disk marks the cell as finished (resume relies on it).
-  write_text_atomic(dir / "summary.json", cell_summary_json(job, r, o, provenance).dump(2) + "\n");
+  nlohmann::json summary = cell_summary_json(job, r, o, provenance);
+  summary[kSummaryChecksumKey] = summary_checksum(summary);
+  write_text_atomic(dir / "summary.json", summary.dump(2) + "\n");
 }
+
+namespace {
+
+// Cells written before checksums (the archived ones) carry none in either file and are read as they
+// are; a cell with one file checksummed and the other not was altered.
+void check_checksums_paired(bool summary_checksummed, bool curves_checksummed) {
+  if (summary_checksummed && !curves_checksummed)
+    throw std::runtime_error("curves.h5 carries no checksums beside a checksummed summary.json");
+  if (!summary_checksummed && curves_checksummed)
+    throw std::runtime_error(std::string("summary.json carries no '") + kSummaryChecksumKey + "' beside a checksummed curves.h5");
+}
+
+}  // namespace
 
 std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::string& expected_cell_hash,
                                             const std::string& expected_post_hash) {
   std::error_code ec;
   if (!fs::exists(dir / "summary.json", ec) || !fs::exists(dir / "curves.h5", ec)) return std::nullopt;
+  // A finished cell that does not read back (corrupt or altered files) is computed again, with a warning;
+  // a cell of another hash (other settings, another solver revision) silently.
+  const auto corrupt = [&](const std::string& what) -> std::optional<StoredCell> {
+    spdlog::warn("{}: the finished cell does not read back ({}): it is computed again", dir.string(), what);
+    return std::nullopt;
+  };
+  nlohmann::json j;
   try {
     std::ifstream in(dir / "summary.json");
-    const nlohmann::json j = nlohmann::json::parse(in);
+    j = nlohmann::json::parse(in);
+    if (!j.is_object()) return corrupt("summary.json: not a JSON object");
+    if (j.contains(kSummaryChecksumKey) && j[kSummaryChecksumKey] != summary_checksum(j))
+      return corrupt(std::string("summary.json: its values do not match '") + kSummaryChecksumKey + "'");
+  } catch (const std::exception& e) {
+    return corrupt(std::string("summary.json: ") + e.what());
+  }
+  try {
     if (j.at("format") != kCellSummaryFormat || j.at("cell_hash") != expected_cell_hash) return std::nullopt;
     StoredCell s;
     CellResponse& r = s.response;
     const std::optional<CellStatus> status = status_from_name(j.at("status").get<std::string>());
-    if (!status) return std::nullopt;
+    if (!status) return corrupt("summary.json: unknown status");
     r.status = *status;
     r.diagnostic = j.at("diagnostic").get<std::string>();
     r.side_m = j.at("cell").at("side_m").get<double>();
@@ -288,7 +328,8 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
     r.operator_energy_mismatch = j.at("operator_energy_mismatch").get<double>();
     r.wall_s = j.at("wall_s").get<double>();
     const std::lock_guard<std::mutex> lock(hdf5_mutex());
-    const H5Reader h5(dir / "curves.h5");
+    const H5Reader h5(dir / "curves.h5", H5Checksums::optional);
+    check_checksums_paired(j.contains(kSummaryChecksumKey), h5.checksummed());
     if (h5.has("states/strain")) {
       const auto strain = h5.read_doubles("states/strain").values;
       const auto sigma = h5.read_doubles("states/sigma_bar").values;
@@ -304,7 +345,7 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
       const std::size_t n = strain.size();
       for (const std::size_t len : {sigma.size(), bulk.size(), coh.size(), diss.size(), work.size(), jumped.size(), opening.size(),
                                     segments.size(), open.size(), newton.size()})
-        if (len != n) return std::nullopt;
+        if (len != n) return corrupt("curves.h5: the states' datasets differ in length");
       r.states.resize(n);
       for (std::size_t i = 0; i < n; ++i) {
         CellState& c = r.states[i];
@@ -323,8 +364,8 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
     }
     s.post_hash_matches = j.value("post_hash", std::string()) == expected_post_hash;
     return s;
-  } catch (const std::exception&) {
-    return std::nullopt;  // unreadable or from another version: the cell is simply run again
+  } catch (const std::exception& e) {
+    return corrupt(e.what());
   }
 }
 

@@ -1,9 +1,18 @@
 #include "uhpc/hdf5_io.hpp"
 
 #include <hdf5.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
 #include <limits>
+#include <set>
+#include <string_view>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -12,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "uhpc/atomic_file.hpp"
+#include "uhpc/hash.hpp"
 
 namespace uhpc {
 namespace detail {
@@ -32,6 +42,20 @@ struct H5FileState {
 }  // namespace detail
 
 namespace {
+
+// The root attribute that marks a file written with checksums (see hdf5_io.hpp); its value names the
+// scheme, so that another scheme can be told apart later.
+constexpr const char* kChecksumAttribute = "checksums";
+constexpr const char* kChecksumScheme = "hdf5-1.10 metadata checksums + fletcher32 datasets";
+
+// After a checksum failure libhdf5 1.10.8 keeps the corrupt entry in its metadata cache, and its exit
+// handler then loops "closing" it and prints "HDF5: infinite loop closing library" with a list of ids to
+// stderr: noise after the program's one error line. Every file here is closed by its owner (RAII) before
+// the process ends, so the handler has nothing to do and is switched off, before the library starts.
+const bool kNoHdf5ExitHandler = [] {
+  H5dont_atexit();
+  return true;
+}();
 
 // HDF5 prints its whole error stack to stderr by default. We report errors ourselves (with the
 // innermost HDF5 message in the exception), so the printing is switched off while one of our calls
@@ -157,22 +181,31 @@ std::size_t element_count(const H5Dims& dims) {
   return n;
 }
 
-// Contiguous storage unless compression is asked for; chunks then span whole rows and hold about
-// 1 MiB, a size that compresses well and still lets a reader fetch a few rows cheaply.
+// Every dataset with values is chunked, for the Fletcher32 filter (a checksum per chunk, verified on
+// every read; HDF5 allows filters only on chunked data). Chunks span whole rows and hold about 1 MiB, a
+// size that compresses well and still lets a reader fetch a few rows cheaply. Empty datasets are
+// compact (a chunk needs an extent of at least 1): their shape sits in the checksummed object header.
 Handle dataset_creation(const H5WriteOptions& options, const H5Dims& dims, std::size_t element_size) {
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   if (!dcpl) throw std::runtime_error("HDF5: cannot create dataset properties: " + hdf5_reason());
-  const bool deflate_available = H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0;
-  if (options.gzip_level == 0 || element_count(dims) == 0 || !deflate_available) return dcpl;
-
+  if (element_count(dims) == 0) {
+    if (H5Pset_layout(dcpl.get(), H5D_COMPACT) < 0)
+      throw std::runtime_error("HDF5: cannot set up a compact dataset: " + hdf5_reason());
+    return dcpl;
+  }
   std::vector<hsize_t> chunk(dims.begin(), dims.end());
   const std::size_t row_bytes = element_size * element_count(H5Dims(dims.begin() + 1, dims.end()));
   const std::size_t rows = std::max<std::size_t>(1, (std::size_t{1} << 20) / std::max<std::size_t>(1, row_bytes));
   chunk[0] = std::min<hsize_t>(chunk[0], rows);
-  if (H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
-      H5Pset_shuffle(dcpl.get()) < 0 || H5Pset_deflate(dcpl.get(), static_cast<unsigned>(options.gzip_level)) < 0) {
+  if (H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) < 0)
+    throw std::runtime_error("HDF5: cannot set up chunked storage: " + hdf5_reason());
+  const bool deflate_available = H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0;
+  if (options.gzip_level > 0 && deflate_available &&
+      (H5Pset_shuffle(dcpl.get()) < 0 || H5Pset_deflate(dcpl.get(), static_cast<unsigned>(options.gzip_level)) < 0)) {
     throw std::runtime_error("HDF5: cannot set up compression: " + hdf5_reason());
   }
+  // Last in the pipeline: the checksum covers the bytes as stored and is verified first on reading.
+  if (H5Pset_fletcher32(dcpl.get()) < 0) throw std::runtime_error("HDF5: cannot set up checksums: " + hdf5_reason());
   return dcpl;
 }
 
@@ -273,9 +306,61 @@ void check_fits_in_file(hid_t file, hssize_t count, std::size_t value_bytes, con
   }
 }
 
+// Fletcher32 sums 16-bit words modulo 65535, so it cannot tell a word 0x0000 from 0xffff: eight zero
+// bytes of a value overwritten with ff (a zero double become NaN) pass it. Every dataset therefore also
+// carries the 64-bit FNV-1a over the 64-bit words of its values as stored (the file type's little-endian
+// bytes, so the digest is the same on every machine; words, not bytes: 8x faster, and any change within
+// one word is always caught) in the attribute below, inside its checksummed object header.
+constexpr const char* kDigestAttribute = "checksum_fnv1a64_words";
+
+// The digest of `count` values of `memory_type` at `data`, taken over their bytes in `file_type`.
+std::string values_digest(hid_t memory_type, hid_t file_type, const void* data, std::size_t count,
+                          const std::string& where) {
+  const std::size_t bytes = count * H5Tget_size(file_type);
+  if (H5Tequal(memory_type, file_type) > 0)
+    return fnv1a64_words_hex(std::string_view(static_cast<const char*>(data), bytes));
+  std::vector<char> converted(count * std::max(H5Tget_size(memory_type), H5Tget_size(file_type)));
+  if (count > 0) std::memcpy(converted.data(), data, count * H5Tget_size(memory_type));
+  if (count > 0 && H5Tconvert(memory_type, file_type, count, converted.data(), nullptr, H5P_DEFAULT) < 0)
+    throw std::runtime_error(where + "cannot convert to its file type: " + hdf5_reason());
+  return fnv1a64_words_hex(std::string_view(converted.data(), bytes));
+}
+
+// A dataset of a checksummed file is verified twice over: the library checks its Fletcher32 sums while
+// reading, and its values as stored must match its digest. A dataset without either was written by
+// another program into a file marked as ours. Returns the digest written with the dataset.
+std::string written_digest(hid_t dataset, const std::string& where) {
+  const htri_t has_digest = H5Aexists(dataset, kDigestAttribute);
+  Handle dcpl(H5Dget_create_plist(dataset), H5Pclose);
+  unsigned flags = 0;
+  std::size_t n = 0;
+  const H5D_layout_t layout = dcpl ? H5Pget_layout(dcpl.get()) : H5D_LAYOUT_ERROR;
+  const bool fletcher = layout == H5D_CHUNKED && H5Pget_filter_by_id2(dcpl.get(), H5Z_FILTER_FLETCHER32, &flags, &n,
+                                                                      nullptr, 0, nullptr, nullptr) >= 0;
+  H5Eclear2(H5E_DEFAULT);
+  if (has_digest <= 0 || !(fletcher || layout == H5D_COMPACT))
+    throw std::runtime_error(where + "carries no checksum in a file marked as checksummed: the file was altered");
+  Handle attribute = open_attribute(dataset, kDigestAttribute, where);
+  return read_string_attribute(attribute.get(), where + "attribute '" + kDigestAttribute + "': ");
+}
+
+// The digest of the values as stored, from `values` read as `memory_type` when that reading is exact
+// (the dataset's own type in native byte order: the usual case); otherwise the dataset is read once more
+// in that type (an integer dataset read as doubles).
+std::string read_digest(hid_t dataset, hid_t file_type, hid_t memory_type, const void* values, std::size_t count,
+                        const std::string& where) {
+  Handle native(H5Tget_native_type(file_type, H5T_DIR_ASCEND), H5Tclose);
+  if (!native) throw std::runtime_error(where + "cannot read its type: " + hdf5_reason());
+  if (H5Tequal(native.get(), memory_type) > 0) return values_digest(memory_type, file_type, values, count, where);
+  std::vector<char> stored(count * H5Tget_size(native.get()));
+  if (!stored.empty() && H5Dread(dataset, native.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, stored.data()) < 0)
+    throw std::runtime_error(where + "cannot read (corrupt storage or checksum mismatch): " + hdf5_reason());
+  return values_digest(native.get(), file_type, stored.data(), count, where);
+}
+
 template <typename T>
 H5Array<T> read_array(const std::string& file_name, hid_t file, const std::string& name, hid_t memory_type,
-                      bool integers_only) {
+                      bool integers_only, bool checksummed) {
   Handle dataset = open_dataset(file_name, file, name);
   const std::string where = prefix(file_name, "dataset", name);
   Handle type(H5Dget_type(dataset.get()), H5Tclose);
@@ -293,12 +378,123 @@ H5Array<T> read_array(const std::string& file_name, hid_t file, const std::strin
   array.dims.assign(extents.begin(), extents.end());
   const hssize_t count = H5Sget_simple_extent_npoints(space.get());
   check_fits_in_file(file, count, sizeof(T), where);
+  const std::string expected = checksummed ? written_digest(dataset.get(), where) : std::string();
   array.values.resize(static_cast<std::size_t>(std::max<hssize_t>(count, 0)));
   if (!array.values.empty() &&
       H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, array.values.data()) < 0) {
-    throw std::runtime_error(where + "cannot read: " + hdf5_reason());
+    // A Fletcher32 mismatch ends here too ("data error detected by Fletcher32 checksum").
+    throw std::runtime_error(where + "cannot read (corrupt storage or checksum mismatch): " + hdf5_reason());
   }
+  if (checksummed &&
+      read_digest(dataset.get(), type.get(), memory_type, array.values.data(), array.values.size(), where) != expected)
+    throw std::runtime_error(where + "checksum mismatch: its values are not those written (attribute '" +
+                             kDigestAttribute + "')");
   return array;
+}
+
+// The names of a group's members, sorted.
+std::vector<std::string> member_names(hid_t group, const std::string& where) {
+  H5G_info_t info;
+  if (H5Gget_info(group, &info) < 0) throw std::runtime_error(where + "cannot list: " + hdf5_reason());
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t length = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    if (length < 0) throw std::runtime_error(where + "cannot list: " + hdf5_reason());
+    std::string name(static_cast<std::size_t>(length) + 1, '\0');
+    if (H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(), H5P_DEFAULT) < 0)
+      throw std::runtime_error(where + "cannot list: " + hdf5_reason());
+    name.resize(static_cast<std::size_t>(length));
+    names.push_back(std::move(name));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Checking a file without checksums in a child process
+
+// Reads every attribute of `object` (strings as strings, numbers as doubles, anything else as raw bytes).
+void read_all_attributes(hid_t file, hid_t object, unsigned long long count, const std::string& where) {
+  for (unsigned long long i = 0; i < count; ++i) {
+    Handle attribute(H5Aopen_by_idx(object, ".", H5_INDEX_NAME, H5_ITER_INC, i, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+    if (!attribute) throw std::runtime_error(where + "attribute " + std::to_string(i) + ": cannot open: " + hdf5_reason());
+    const std::string at = where + "attribute " + std::to_string(i) + ": ";
+    Handle type(H5Aget_type(attribute.get()), H5Tclose);
+    Handle space(H5Aget_space(attribute.get()), H5Sclose);
+    if (!type || !space) throw std::runtime_error(at + "cannot read its type: " + hdf5_reason());
+    const H5T_class_t kind = H5Tget_class(type.get());
+    const hssize_t points = H5Sget_simple_extent_npoints(space.get());
+    if (kind == H5T_STRING && points == 1) {
+      read_string_attribute(attribute.get(), at);
+    } else if (kind == H5T_INTEGER || kind == H5T_FLOAT) {
+      check_fits_in_file(file, points, sizeof(double), at);
+      std::vector<double> values(static_cast<std::size_t>(std::max<hssize_t>(points, 0)));
+      if (!values.empty() && H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, values.data()) < 0)
+        throw std::runtime_error(at + "cannot read: " + hdf5_reason());
+    } else if (H5Tdetect_class(type.get(), H5T_VLEN) <= 0 && H5Tis_variable_str(type.get()) <= 0) {
+      const std::size_t size = H5Tget_size(type.get());
+      check_fits_in_file(file, points, size, at);
+      std::vector<unsigned char> bytes(static_cast<std::size_t>(std::max<hssize_t>(points, 0)) * size);
+      if (!bytes.empty() && H5Aread(attribute.get(), type.get(), bytes.data()) < 0)
+        throw std::runtime_error(at + "cannot read: " + hdf5_reason());
+    }
+  }
+}
+
+// Reads the object at `path` (normalized) the way the readers do (H5Lexists level by level, then open),
+// its attributes, and all its values or members, recursively. `seen` holds the objects' addresses:
+// a group linked into itself is walked once.
+void walk_object(const std::string& file_name, hid_t file, const std::string& path, std::set<haddr_t>& seen) {
+  Handle object = open_object(file_name, file, path, "object");
+  const std::string where = prefix(file_name, "object", path);
+  H5O_info_t info;
+  if (H5Oget_info2(object.get(), &info, H5O_INFO_BASIC | H5O_INFO_NUM_ATTRS) < 0)
+    throw std::runtime_error(where + "cannot read its header: " + hdf5_reason());
+  if (!seen.insert(info.addr).second) return;
+  read_all_attributes(file, object.get(), info.num_attrs, where);
+  const H5I_type_t type = H5Iget_type(object.get());
+  if (type == H5I_GROUP) {
+    for (const std::string& name : member_names(object.get(), where))
+      walk_object(file_name, file, path.empty() ? name : path + "/" + name, seen);
+  } else if (type == H5I_DATASET) {
+    Handle data_type(H5Dget_type(object.get()), H5Tclose);
+    const H5T_class_t kind = H5Tget_class(data_type.get());
+    if (kind == H5T_INTEGER || kind == H5T_FLOAT) {
+      read_array<double>(file_name, file, path, H5T_NATIVE_DOUBLE, false, false);
+    } else if (H5Tdetect_class(data_type.get(), H5T_VLEN) <= 0 && H5Tis_variable_str(data_type.get()) <= 0) {
+      Handle space(H5Dget_space(object.get()), H5Sclose);
+      const hssize_t points = H5Sget_simple_extent_npoints(space.get());
+      const std::size_t size = H5Tget_size(data_type.get());
+      check_fits_in_file(file, points, size, where);
+      std::vector<unsigned char> bytes(static_cast<std::size_t>(std::max<hssize_t>(points, 0)) * size);
+      if (!bytes.empty() && H5Dread(object.get(), data_type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) < 0)
+        throw std::runtime_error(where + "cannot read: " + hdf5_reason());
+    }
+  }
+}
+
+// The child's part: "" when the whole file reads, else the first error.
+std::string read_whole_file(const std::filesystem::path& path) {
+  try {
+    QuietErrors quiet;
+    Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+    if (!file) return path.string() + ": cannot open as HDF5: " + hdf5_reason();
+    std::set<haddr_t> seen;
+    walk_object(path.string(), file.get(), "", seen);
+    return "";
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+void write_all(int fd, const std::string& text) {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;
+    done += static_cast<std::size_t>(n);
+  }
 }
 
 void create_parent_directories(const std::filesystem::path& file) {
@@ -338,7 +534,10 @@ void H5Output::open_file(const std::filesystem::path& path, bool create, std::st
   // With the strong close degree, H5Fclose really closes the file (and reports errors) even if an
   // object was left open, instead of silently deferring the close.
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  if (!fapl || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0) {
+  // The 1.10 file format throughout: superblock v3 and object headers, groups and chunk indices that
+  // carry checksums (the format before 1.8 has none; its B-trees, once corrupt, can crash the library).
+  if (!fapl || H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0 ||
+      H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_V110) < 0) {
     throw std::runtime_error(display_name + ": cannot set up file access: " + hdf5_reason());
   }
 #if H5_VERSION_GE(1, 10, 7)
@@ -356,6 +555,7 @@ void H5Output::open_file(const std::filesystem::path& path, bool create, std::st
   state_->file = file;
   state_->name = std::move(display_name);
   state_->options = options;
+  if (create) write_string_attribute(file, kChecksumAttribute, kChecksumScheme, prefix(state_->name, "object", ""));
 }
 
 void H5Output::close_file() {
@@ -424,6 +624,8 @@ void write_dataset(const detail::H5FileState* state, bool open, const std::strin
     throw std::runtime_error(where + "cannot write: " + hdf5_reason());
   }
   write_string_attribute(dataset.get(), "units", units, where);
+  write_string_attribute(dataset.get(), kDigestAttribute,
+                         values_digest(memory_type, file_type, data, element_count(dims), where), where);
 }
 
 template <typename T>
@@ -613,14 +815,128 @@ void H5Appender::close() {
 // ---------------------------------------------------------------------------------------------------
 // H5Reader
 
-H5Reader::H5Reader(const std::filesystem::path& path)
+namespace {
+
+// The version of the file's superblock (0..3; -1 when it has no HDF5 signature), read from its bytes
+// without the library. It sits at offset 0 or a power of two from 512 (after a user block).
+int superblock_version(const std::filesystem::path& path) {
+  static constexpr char kSignature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return -1;
+  int version = -1;
+  for (long offset = 0; version < 0; offset = offset == 0 ? 512 : offset * 2) {
+    char head[9];
+    if (std::fseek(f, offset, SEEK_SET) != 0 || std::fread(head, 1, sizeof head, f) != sizeof head) break;
+    if (std::memcmp(head, kSignature, sizeof kSignature) == 0) version = static_cast<unsigned char>(head[8]);
+  }
+  std::fclose(f);
+  return version;
+}
+
+}  // namespace
+
+void check_hdf5_file_in_child(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (ec) throw std::runtime_error(name + ": cannot read: " + ec.message());
+  int pipe_fds[2];
+  if (::pipe(pipe_fds) != 0) throw std::runtime_error(name + ": cannot check the file: pipe: " + std::strerror(errno));
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(pipe_fds[0]);
+    ::close(pipe_fds[1]);
+    throw std::runtime_error(name + ": cannot check the file: fork: " + std::strerror(errno));
+  }
+  if (child == 0) {
+    // Only HDF5 and this thread run here; _exit skips every handler of the parent's.
+    ::close(pipe_fds[0]);
+    const std::string error = read_whole_file(path);
+    write_all(pipe_fds[1], error);
+    ::_exit(error.empty() ? 0 : 3);
+  }
+  ::close(pipe_fds[1]);
+  // A corrupt file may also send the library round in circles: the child gets a minute plus a second
+  // per 20 MB, far more than a healthy read needs.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60 + bytes / 20000000);
+  std::string message;
+  bool timed_out = false;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd p{pipe_fds[0], POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
+    char buffer[4096];
+    const ssize_t n = ::read(pipe_fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // end of file: the child has finished (or died)
+    message.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(pipe_fds[0]);
+  if (timed_out) ::kill(child, SIGKILL);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (timed_out) throw std::runtime_error(name + ": corrupt HDF5 file: reading it did not end in time");
+  if (WIFSIGNALED(status)) {
+    throw std::runtime_error(fmt::format("{}: corrupt HDF5 file: reading it crashed the HDF5 library (signal {}, {})",
+                                         name, WTERMSIG(status), ::strsignal(WTERMSIG(status))));
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error(message.empty() ? name + ": corrupt HDF5 file: it cannot be read whole" : message);
+}
+
+namespace {
+
+hid_t open_for_reading(const std::string& name, const std::filesystem::path& path) {
+  QuietErrors quiet;
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) throw std::runtime_error(name + ": cannot open as HDF5: " + hdf5_reason());
+  return file;
+}
+
+// True when the root carries the checksum mark of the scheme this version writes.
+bool carries_checksum_mark(const std::string& name, hid_t file) {
+  QuietErrors quiet;
+  const htri_t exists = H5Aexists(file, kChecksumAttribute);
+  if (exists < 0) throw std::runtime_error(name + ": cannot read the root group: " + hdf5_reason());
+  if (exists == 0) return false;
+  Handle attribute = open_attribute(file, kChecksumAttribute, name + ": ");
+  const std::string scheme = read_string_attribute(attribute.get(), name + ": attribute 'checksums': ");
+  if (scheme != kChecksumScheme)
+    throw std::runtime_error(name + ": attribute 'checksums': unknown scheme '" + scheme + "' (this version knows '" +
+                             kChecksumScheme + "')");
+  return true;
+}
+
+}  // namespace
+
+// A file whose superblock is older than v2 has no metadata checksums and is never one of ours (we write
+// v3): when checksums are required it is refused unopened. A file from elsewhere (checksums optional)
+// is first read whole by a child process, so that corrupt metadata ends the child, not this process.
+H5Reader::H5Reader(const std::filesystem::path& path, H5Checksums checksums)
     : path_(path), state_(std::make_unique<detail::H5FileState>()) {
   state_->name = path_.string();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path_, ec)) throw std::runtime_error(state_->name + ": no such file");
-  QuietErrors quiet;
-  state_->file = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (state_->file < 0) throw std::runtime_error(state_->name + ": cannot open as HDF5: " + hdf5_reason());
+  const std::string no_checksums =
+      ": carries no checksums (written by an earlier version or by another program), so it cannot be verified; "
+      "this file is only read with checksums";
+  if (checksums == H5Checksums::required) {
+    const int version = superblock_version(path_);
+    if (version >= 0 && version < 2)
+      throw std::runtime_error(state_->name + no_checksums + " (HDF5 superblock version " + std::to_string(version) + ")");
+  } else {
+    check_hdf5_file_in_child(path_);
+  }
+  state_->file = open_for_reading(state_->name, path_);
+  checksummed_ = carries_checksum_mark(state_->name, state_->file);
+  if (!checksummed_ && checksums == H5Checksums::required) throw std::runtime_error(state_->name + no_checksums);
 }
 
 H5Reader::H5Reader(H5Reader&&) noexcept = default;
@@ -638,20 +954,7 @@ std::vector<std::string> H5Reader::children(const std::string& group) const {
   Handle object = open_object(state_->name, state_->file, group, "group");
   const std::string where = prefix(state_->name, "group", group);
   if (H5Iget_type(object.get()) != H5I_GROUP) throw std::runtime_error(where + "not a group");
-  H5G_info_t info;
-  if (H5Gget_info(object.get(), &info) < 0) throw std::runtime_error(where + "cannot list: " + hdf5_reason());
-  std::vector<std::string> names;
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t length =
-        H5Lget_name_by_idx(object.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
-    if (length < 0) throw std::runtime_error(where + "cannot list: " + hdf5_reason());
-    std::string name(static_cast<std::size_t>(length) + 1, '\0');
-    H5Lget_name_by_idx(object.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(), H5P_DEFAULT);
-    name.resize(static_cast<std::size_t>(length));
-    names.push_back(std::move(name));
-  }
-  std::sort(names.begin(), names.end());
-  return names;
+  return member_names(object.get(), where);
 }
 
 H5Dims H5Reader::dims(const std::string& dataset) const {
@@ -667,17 +970,17 @@ H5Dims H5Reader::dims(const std::string& dataset) const {
 
 H5Array<double> H5Reader::read_doubles(const std::string& dataset) const {
   QuietErrors quiet;
-  return read_array<double>(state_->name, state_->file, dataset, H5T_NATIVE_DOUBLE, false);
+  return read_array<double>(state_->name, state_->file, dataset, H5T_NATIVE_DOUBLE, false, checksummed_);
 }
 
 H5Array<std::uint8_t> H5Reader::read_bytes(const std::string& dataset) const {
   QuietErrors quiet;
-  return read_array<std::uint8_t>(state_->name, state_->file, dataset, H5T_NATIVE_UINT8, true);
+  return read_array<std::uint8_t>(state_->name, state_->file, dataset, H5T_NATIVE_UINT8, true, checksummed_);
 }
 
 H5Array<std::int64_t> H5Reader::read_int64(const std::string& dataset) const {
   QuietErrors quiet;
-  return read_array<std::int64_t>(state_->name, state_->file, dataset, H5T_NATIVE_INT64, true);
+  return read_array<std::int64_t>(state_->name, state_->file, dataset, H5T_NATIVE_INT64, true, checksummed_);
 }
 
 std::string H5Reader::units(const std::string& dataset) const {

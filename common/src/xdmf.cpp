@@ -119,9 +119,11 @@ ParticleFieldWriter::ParticleFieldWriter(std::filesystem::path dir, std::string 
   for (const XdmfStep& s : steps_) kept.insert(s.group);
   std::vector<std::string> later;
   {
-    const H5Reader h5(h5_path_);
-    for (const XdmfStep& s : steps_)
+    const H5Reader h5(h5_path_, H5Checksums::required);
+    for (const XdmfStep& s : steps_) {
       if (!h5.has(s.group)) throw std::runtime_error(h5_path_.string() + ": step group '" + s.group + "' is missing");
+      for (const std::string& dataset : h5.children(s.group)) h5.read_doubles(s.group + "/" + dataset);
+    }
     for (const std::string& group : h5.children(""))
       if (group.rfind("step_", 0) == 0 && kept.count(group) == 0) later.push_back(group);
   }

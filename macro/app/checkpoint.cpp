@@ -1,11 +1,13 @@
 #include "checkpoint.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "run_inputs.hpp"
@@ -101,7 +103,7 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& file, const std::stri
     throw InputError(name + ": no checkpoint to restart from (the run wrote none: run.checkpoint_interval_steps)");
   RunCheckpoint c;
   try {
-    const H5Reader h5(file);
+    const H5Reader h5(file, H5Checksums::required);
     if (h5.string_attribute("", "format") != kFormat) throw std::runtime_error("not a " + std::string(kFormat) + " file");
     c.config_hash = h5.string_attribute("", "config_hash");
     c.build = h5.string_attribute("", "build");
@@ -150,6 +152,36 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& file, const std::stri
     throw InputError(name + ": not a usable checkpoint: " + e.what());
   }
   return c;
+}
+
+void check_checkpoint_values(const RunCheckpoint& c, const RunSettings& run, const std::filesystem::path& file) {
+  const SolverCheckpoint& s = c.solver;
+  const auto refuse = [&](const std::string& value, const std::string& reason) {
+    throw InputError(file.string() + ": " + value + ": " + reason);
+  };
+  const std::string edited = ": the checkpoint is corrupt or was edited";
+  if (!std::isfinite(s.time_s) || s.time_s < 0.0)
+    refuse(fmt::format("solver/clock time_s = {}", s.time_s), "not a time >= 0 s" + edited);
+  if (!(s.time_s < run.end_time_s))
+    refuse(fmt::format("solver/clock time_s = {} s", s.time_s),
+           fmt::format("at or past run.end_time_s = {} s: a restart carries a run on to a later end time", run.end_time_s));
+  if (s.steps < 0 || s.steps > run.max_steps)
+    refuse(fmt::format("solver/counters steps = {}", s.steps),
+           fmt::format("outside [0, run.max_steps = {}]{} (a run that really took more steps goes on with a larger "
+                       "run.max_steps)",
+                       run.max_steps, edited));
+  if ((s.steps == 0) != (s.time_s == 0.0))
+    refuse(fmt::format("solver/counters steps = {} at solver/clock time_s = {}", s.steps, s.time_s),
+           "a run is at time 0 exactly at step 0" + edited);
+  if (s.repeats < 0) refuse(fmt::format("solver/counters repeats = {}", s.repeats), "negative" + edited);
+  if (!std::isfinite(s.dt_s) || !(s.dt_s > 0.0))
+    refuse(fmt::format("solver/clock dt_s = {}", s.dt_s), "not a step > 0 s" + edited);
+  if (!std::isfinite(s.last_dt_s) || s.last_dt_s < 0.0 || s.last_dt_s > s.time_s)
+    refuse(fmt::format("solver/clock last_dt_s = {}", s.last_dt_s), fmt::format("outside [0, time_s = {}]", s.time_s) + edited);
+  if (!std::isfinite(s.wall_force_N))
+    refuse(fmt::format("solver/clock wall_force_N = {}", s.wall_force_N), "not finite" + edited);
+  if (!std::isfinite(c.fields.last_time_s) || c.fields.last_time_s > s.time_s)
+    refuse(fmt::format("run/field_last_time = {}", c.fields.last_time_s), fmt::format("after time_s = {}", s.time_s) + edited);
 }
 
 }  // namespace uhpc::macro

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "case_config.hpp"
 #include "run_outputs.hpp"
 #include "solver/explicit_solver.hpp"
 
@@ -29,7 +30,14 @@ std::string checkpoint_build();
 
 void write_checkpoint(const std::filesystem::path& file, const RunCheckpoint& checkpoint);
 // Throws InputError (naming the file) for a missing, corrupt or foreign checkpoint, and when its case
-// hash differs from `config_hash`.
+// hash differs from `config_hash`. The file's checksums (hdf5_io.hpp) are verified: a checkpoint without
+// them, or one whose metadata or values fail them, is refused.
 RunCheckpoint read_checkpoint(const std::filesystem::path& file, const std::string& config_hash);
+
+// The checkpoint's clock within the restarted run's own bounds: time finite, >= 0 and before
+// run.end_time_s (and 0 only at step 0), steps in [0, run.max_steps], repeats >= 0, the step dt finite
+// and > 0, the last step and the wall force finite, the last field output not after the time. Throws
+// InputError naming the file, the value and the bound.
+void check_checkpoint_values(const RunCheckpoint& checkpoint, const RunSettings& run, const std::filesystem::path& file);
 
 }  // namespace uhpc::macro

@@ -7,6 +7,7 @@
 
 #include "material_factory.hpp"
 #include "uhpc/atomic_file.hpp"
+#include "uhpc/errors.hpp"
 
 namespace uhpc::macro {
 
@@ -15,11 +16,22 @@ FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& ma
 
 FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, const FieldOutputState& resumed,
                          std::optional<FullFields> full)
-    : writer_(dir, "fields", resumed.particle_steps),
-      sphere_writer_(dir, "sphere", resumed.sphere_steps),
+    : writer_(resumed_writer(dir, "fields", resumed.particle_steps)),
+      sphere_writer_(resumed_writer(dir, "sphere", resumed.sphere_steps)),
       law_fields_(law_output_fields(material)),
       full_(full),
       last_time_(resumed.last_time_s) {}
+
+// The outputs a restart appends to are inputs of the restart: one that is missing, lacks a step the
+// checkpoint recorded or fails its checksums is bad input (exit 2), named by the writer's message.
+ParticleFieldWriter FieldOutput::resumed_writer(const std::filesystem::path& dir, const std::string& basename,
+                                                const std::vector<XdmfStep>& steps) {
+  try {
+    return ParticleFieldWriter(dir, basename, steps);
+  } catch (const std::runtime_error& e) {
+    throw InputError(std::string(e.what()) + " (an output of the run being restarted)");
+  }
+}
 
 void FieldOutput::write(const ExplicitSolver& solver) {
   if (solver.time() <= last_time_) return;

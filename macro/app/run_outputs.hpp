@@ -55,6 +55,8 @@ class FieldOutput {
   std::size_t steps_written() const { return writer_.steps_written(); }
 
  private:
+  static ParticleFieldWriter resumed_writer(const std::filesystem::path& dir, const std::string& basename,
+                                            const std::vector<XdmfStep>& steps);
   ParticleFieldWriter writer_;
   // The projectile, one point per step with its radius and velocity (sphere.xdmf: in ParaView, a Glyph
   // of type Sphere scaled by "radius" with scale factor 2 draws it over fields.xdmf).

@@ -1,6 +1,7 @@
 // The ensemble file (common/include/uhpc/ensemble_file.hpp): the contract between uhpc-micro ensemble and
 // uhpc-calibrate. Round trip, and one clear InputError per kind of bad file.
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <string>
@@ -105,7 +106,26 @@ TEST_F(CalibrateEnsembleFile, MissingFile) {
 TEST_F(CalibrateEnsembleFile, NotAnHdf5File) {
   const auto path = dir_ / "text.h5";
   std::ofstream(path) << "not hdf5";
-  EXPECT_EQ(test::error_of<InputError>([&] { (void)read_ensemble(path); }), path.string() + ": not a readable HDF5 file");
+  EXPECT_EQ(test::error_of<InputError>([&] { (void)read_ensemble(path); })
+                .rfind(path.string() + ": not a readable HDF5 file: cannot open as HDF5: ", 0),
+            0u);
+}
+
+// An ensemble written by uhpc-micro carries checksums: one byte of a stress value flipped in the file is
+// refused naming the file and the dataset, never read as another stress.
+TEST_F(CalibrateEnsembleFile, AFlippedValueInAWrittenEnsembleIsRefusedNamingTheDataset) {
+  const Ensemble e = small_ensemble();
+  const auto path = dir_ / "e.h5";
+  write_ensemble(path, e, Provenance::make("uhpc-micro ensemble", "abc", 42));
+  std::string bytes = test::read_file(path);
+  const double value = e.stress_mean_Pa[1][5];
+  const std::size_t at = bytes.find(std::string(reinterpret_cast<const char*>(&value), sizeof value));
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 1] ^= 0x20;
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  EXPECT_EQ(test::error_of<InputError>([&] { (void)read_ensemble(path); }),
+            path.string() + ": not a readable HDF5 file: dataset 'stress/mean': cannot read (corrupt storage or "
+                            "checksum mismatch): data error detected by Fletcher32 checksum");
 }
 
 TEST_F(CalibrateEnsembleFile, EachMissingDatasetIsNamed) {

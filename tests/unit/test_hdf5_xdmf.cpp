@@ -1,9 +1,12 @@
 // HDF5 result files (round trips with units, temporary-then-rename, error messages, provenance) and
 // the XDMF particle-field writer (document structure, and every reference resolvable in the .h5).
 #include <hdf5.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -19,6 +22,7 @@
 
 #include "test_support.hpp"
 #include "uhpc/atomic_file.hpp"
+#include "uhpc/hash.hpp"
 #include "uhpc/hdf5_io.hpp"
 #include "uhpc/xdmf.hpp"
 
@@ -334,7 +338,8 @@ TEST_F(H5Test, ADatasetLargerThanItsFileCanHoldIsRefusedBeforeAnyAllocation) {
     H5Sclose(space);
     H5Fclose(f);
   }
-  const std::string error = runtime_error_of([&] { H5Reader(file).read_doubles("x"); });
+  // A file of another program: checked whole in a child process first, which meets the same guard.
+  const std::string error = runtime_error_of([&] { H5Reader(file, uhpc::H5Checksums::optional).read_doubles("x"); });
   EXPECT_THAT(error, HasSubstr(file.string() + ": dataset 'x': declares 4000000000 values (32 GB), more than a file of "));
   EXPECT_THAT(error, HasSubstr("bytes can hold: the file is corrupt"));
 
@@ -347,6 +352,178 @@ TEST_F(H5Test, ADatasetLargerThanItsFileCanHoldIsRefusedBeforeAnyAllocation) {
   }
   EXPECT_LT(fs::file_size(zeros), 32000000u / 100u);
   EXPECT_EQ(H5Reader(zeros).read_doubles("z").values, values);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Checksums (hdf5_io.hpp, "Integrity")
+
+std::string file_bytes(const fs::path& path) { return read_text(path); }
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << bytes;
+}
+
+// A file of the format before HDF5 1.8 (the library's defaults: superblock v0, symbol-table groups with
+// v1 B-trees, no checksums), as other programs and earlier versions wrote them: /g/x = {1, 2, 3}.
+void write_old_format_file(const fs::path& path) {
+  const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t g = H5Gcreate2(f, "/g", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hsize_t n = 3;
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  const hid_t d = H5Dcreate2(g, "x", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const double values[3] = {1.0, 2.0, 3.0};
+  H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values);
+  H5Dclose(d);
+  H5Sclose(space);
+  H5Gclose(g);
+  H5Fclose(f);
+}
+
+// The offset of the root group's v1 B-tree address in its object header's symbol-table message.
+std::size_t root_btree_address_offset(const std::string& bytes) {
+  std::uint64_t header = 0;
+  std::memcpy(&header, bytes.data() + 56 + 8, 8);  // the root entry's object header address
+  std::uint16_t messages = 0;
+  std::memcpy(&messages, bytes.data() + header + 2, 2);
+  std::size_t at = header + 16;
+  for (int m = 0; m < messages; ++m) {
+    std::uint16_t kind = 0, size = 0;
+    std::memcpy(&kind, bytes.data() + at, 2);
+    std::memcpy(&size, bytes.data() + at + 2, 2);
+    if (kind == 0x11) return at + 8;
+    at += 8u + size;
+  }
+  ADD_FAILURE() << "no symbol-table message";
+  return 0;
+}
+
+// Every value is checksummed: one byte of one value flipped in the file is a read error naming the file
+// and the dataset, not another number. Metadata too: a byte of the superblock flipped is refused on open.
+TEST_F(H5Test, WrittenFilesCarryChecksumsThatEveryReadVerifies) {
+  const fs::path file = dir_ / "sums.h5";
+  std::vector<double> values(1000);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = 1.0 + static_cast<double>(i);
+  values[500] = 123456.789;
+  {
+    H5Writer w(file);
+    w.write("group/values", values, "Pa");
+    w.write("empty", std::vector<double>{}, "m");
+    w.close();
+  }
+  EXPECT_TRUE(H5Reader(file).checksummed());
+  EXPECT_TRUE(H5Reader(file).read_doubles("empty").values.empty());
+  const std::string intact = file_bytes(file);
+  EXPECT_EQ(intact[8], 3) << "superblock version";
+
+  std::string mutated = intact;
+  char pattern[8];
+  std::memcpy(pattern, &values[500], 8);
+  const std::size_t at = mutated.find(std::string(pattern, 8));
+  ASSERT_NE(at, std::string::npos);
+  mutated[at + 3] ^= 0x10;  // a different, still finite double
+  write_bytes(file, mutated);
+  {
+    // (Closed before the next open: HDF5 shares one open file between the opens of a process.)
+    const H5Reader r(file);
+    const std::string error = runtime_error_of([&] { r.read_doubles("group/values"); });
+    EXPECT_EQ(error, file.string() + ": dataset 'group/values': cannot read (corrupt storage or checksum mismatch): "
+                                     "data error detected by Fletcher32 checksum");
+  }
+
+  mutated = intact;
+  mutated[30] ^= 0x01;  // the end-of-file address in the superblock (v3: checksummed)
+  write_bytes(file, mutated);
+  EXPECT_THAT(runtime_error_of([&] { H5Reader bad(file); }), HasSubstr(file.string() + ": cannot open as HDF5"));
+}
+
+// The datasets' digest: FNV-1a over 64-bit little-endian words, the tail byte by byte. Values computed
+// by hand (Python: h = ((h ^ w) * 0x100000001b3) % 2**64 from 0xcbf29ce484222325).
+TEST(Fnv1a64Words, MatchesHandComputedValuesAndCatchesAnyChangeWithinAWord) {
+  EXPECT_EQ(uhpc::fnv1a64_words_hex(""), "cbf29ce484222325");
+  EXPECT_EQ(uhpc::fnv1a64_words_hex(std::string("\x01\0\0\0\0\0\0\0ab", 10)), "d1139b1867863f8f");
+  EXPECT_EQ(uhpc::fnv1a64_words_hex("ab"), uhpc::fnv1a64_hex("ab"));  // no whole word: bytewise FNV-1a
+  std::string zeros(64, '\0');
+  const std::string intact = uhpc::fnv1a64_words_hex(zeros);
+  for (std::size_t word = 0; word < 8; ++word) {
+    std::string changed = zeros;
+    changed.replace(8 * word, 8, std::string(8, '\xff'));
+    EXPECT_NE(uhpc::fnv1a64_words_hex(changed), intact) << word;
+  }
+}
+
+// Fletcher32 sums 16-bit words modulo 65535 and cannot tell 0x0000 from 0xffff: a zero value overwritten
+// with ff x 8 (NaN) passes the library's check (shown with the library directly), and the dataset's own
+// digest refuses it.
+TEST_F(H5Test, AZeroOverwrittenWithOnesPassesFletcher32AndIsCaughtByTheDigest) {
+  const fs::path file = dir_ / "zeros.h5";
+  const std::vector<double> values = {1.5, 0.0, 2.5};
+  {
+    H5Writer w(file);
+    w.write("v", values, "1");
+    w.close();
+  }
+  std::string bytes = file_bytes(file);
+  std::string pattern(24, '\0');
+  std::memcpy(pattern.data(), values.data(), 24);
+  const std::size_t at = bytes.find(pattern);
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at + 8, 8, std::string(8, '\xff'));
+  write_bytes(file, bytes);
+
+  double read[3] = {0, 0, 0};
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t d = H5Dopen2(f, "/v", H5P_DEFAULT);
+  EXPECT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, read), 0);
+  EXPECT_TRUE(std::isnan(read[1]));
+  H5Dclose(d);
+  H5Fclose(f);
+
+  EXPECT_EQ(runtime_error_of([&] { H5Reader(file).read_doubles("v"); }),
+            file.string() + ": dataset 'v': checksum mismatch: its values are not those written (attribute "
+                            "'checksum_fnv1a64_words')");
+}
+
+// A file without checksums: refused where they are required (the program's own files read back), read
+// after a child process has read it whole where they are optional (files from elsewhere).
+TEST_F(H5Test, AFileWithoutChecksumsIsRefusedOrCheckedInAChild) {
+  const fs::path file = dir_ / "old.h5";
+  write_old_format_file(file);
+  EXPECT_THAT(runtime_error_of([&] { H5Reader r(file); }),
+              HasSubstr(file.string() + ": carries no checksums (written by an earlier version or by another program)"));
+  const H5Reader r(file, uhpc::H5Checksums::optional);
+  EXPECT_FALSE(r.checksummed());
+  EXPECT_EQ(r.read_doubles("g/x").values, (std::vector<double>{1.0, 2.0, 3.0}));
+}
+
+// The corruption that crashes libhdf5 1.10.8 (one bad B-tree address: SIGSEGV in H5Lexists) ends the
+// checking child, and the reader reports it naming the file. The crash itself is shown first, in a
+// child of the test's own that calls the library directly.
+TEST_F(H5Test, CorruptMetadataOfTheOldFormatEndsTheCheckingChildNotTheProcess) {
+  const fs::path file = dir_ / "btree.h5";
+  write_old_format_file(file);
+  std::string bytes = file_bytes(file);
+  const std::size_t at = root_btree_address_offset(bytes);
+  ASSERT_GT(at, 0u);
+  bytes.replace(at, 8, std::string(8, '\xff'));
+  write_bytes(file, bytes);
+
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f >= 0) H5Lexists(f, "/g", H5P_DEFAULT);
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status)) << "the library read this corruption without crashing: the test shows nothing";
+
+  const std::string error = runtime_error_of([&] { H5Reader r(file, uhpc::H5Checksums::optional); });
+  EXPECT_EQ(error.rfind(file.string() + ": corrupt HDF5 file: reading it crashed the HDF5 library (signal ", 0), 0u)
+      << error;
+  EXPECT_THAT(runtime_error_of([&] { H5Reader r(file); }), HasSubstr(file.string() + ": carries no checksums"));
 }
 
 TEST_F(H5Test, AppenderExtendsAnExistingFile) {

@@ -7,12 +7,17 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <functional>
 #include <cstring>
 #include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -190,7 +195,8 @@ TEST_F(MacroCheckpoint, AnUndecidedRunIsExtendedByARestartWithALaterEndTime) {
   const std::string result_before = test::read_file(extended.out / "result.json");
   extended.overrides.back() = "run.end_time_s=5e-5";
   const std::string reached = test::error_of<InputError>([&] { run_macro(extended); });
-  EXPECT_NE(reached.find("at or past end_time_s"), std::string::npos) << reached;
+  EXPECT_NE(reached.find((extended.out / "checkpoint.h5").string() + ": solver/clock time_s = "), std::string::npos) << reached;
+  EXPECT_NE(reached.find("at or past run.end_time_s = 5e-05 s"), std::string::npos) << reached;
   EXPECT_EQ(test::read_file(extended.out / "result.json"), result_before);
   // Anything else changed is another case.
   extended.overrides.back() = "run.end_time_s=9e-5";
@@ -241,6 +247,82 @@ TEST_F(MacroCheckpoint, ACheckpointOfAnotherCaseOrBuildOrNoneIsRefused) {
                                    ": a checkpoint is resumed by the build that wrote it");
   write_text_atomic(file, "not hdf5");
   EXPECT_EQ(restart_error({}).rfind(file + ": not a usable checkpoint: ", 0), 0u);
+}
+
+// A checkpoint's values are checked against the restarted run's own bounds (the edits the issue made:
+// a time of -1 or 1e300, a step count of -1000 or 2^62, and a dt of 0 or NaN): each is refused naming
+// the file and the value. The checkpoint is a real one (the elastic block stopped undecided), edited
+// through the program's own writer, so its checksums are valid and only the values are wrong.
+TEST_F(MacroCheckpoint, ACheckpointWhoseClockIsOutsideTheRunsBoundsIsRefusedNamingTheValue) {
+  MacroRunArgs args;
+  args.config_path = std::string(UHPC_DATA_DIR) + "/macro_elastic_block.json";
+  args.overrides = {"run.checkpoint_interval_steps=5", "run.end_time_s=3e-7"};
+  args.out = dir_ / "block";
+  args.quiet = true;
+  run_macro(args);
+  const fs::path file = args.out / "checkpoint.h5";
+  ASSERT_TRUE(fs::exists(file));
+  const std::string hash = H5Reader(file).string_attribute("", "config_hash");
+  const RunCheckpoint intact = read_checkpoint(file, hash);
+  args.overrides.back() = "run.end_time_s=5e-7";
+  args.restart = true;
+  const auto refused = [&](const std::function<void(SolverCheckpoint&)>& edit) {
+    RunCheckpoint c = intact;
+    edit(c.solver);
+    write_checkpoint(file, c);
+    return test::error_of<InputError>([&] { run_macro(args); });
+  };
+  const std::string at = file.string() + ": ";
+  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.time_s = -1.0; }),
+            at + "solver/clock time_s = -1: not a time >= 0 s: the checkpoint is corrupt or was edited");
+  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.time_s = 1e300; }),
+            at + "solver/clock time_s = 1e+300 s: at or past run.end_time_s = 5e-07 s: a restart carries a run on to "
+                 "a later end time");
+  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.steps = -1000; }),
+            at + "solver/counters steps = -1000: outside [0, run.max_steps = 1000000]: the checkpoint is corrupt or was "
+                 "edited (a run that really took more steps goes on with a larger run.max_steps)");
+  EXPECT_THAT(refused([](SolverCheckpoint& s) { s.steps = std::int64_t{1} << 62; }),
+              ::testing::StartsWith(at + "solver/counters steps = 4611686018427387904: outside [0, run.max_steps"));
+  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.dt_s = 0.0; }),
+            at + "solver/clock dt_s = 0: not a step > 0 s: the checkpoint is corrupt or was edited");
+  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.dt_s = std::nan(""); }),
+            at + "solver/clock dt_s = nan: not a step > 0 s: the checkpoint is corrupt or was edited");
+  EXPECT_THAT(refused([](SolverCheckpoint& s) { s.steps = 0; }),
+              ::testing::HasSubstr(": a run is at time 0 exactly at step 0"));
+  // The intact values restart.
+  write_checkpoint(file, intact);
+  run_macro(args);
+  EXPECT_TRUE(fs::exists(args.out / "result.json"));
+}
+
+// The checkpoint's values are checksummed: one byte of a particle value flipped in the file is refused
+// naming the file and the dataset (a checkpoint without checksums: regression.corrupted_files).
+TEST_F(MacroCheckpoint, ACorruptedCheckpointIsRefusedNamingTheFile) {
+  const fs::path file = dir_ / "checkpoint.h5";
+  RunCheckpoint c;
+  c.solver = coarse_disc_solver().checkpoint();
+  c.config_hash = "0123456789abcdef";
+  c.build = checkpoint_build();
+  write_checkpoint(file, c);
+  std::string bytes = test::read_file(file);
+  // A value that is not zero (eight zero bytes are everywhere in a file), found in the file's bytes.
+  std::size_t at = std::string::npos;
+  for (const auto& field : c.solver.particle_fields) {
+    const std::vector<double>& values = field.second;
+    const double* value = values.data() + values.size() / 2;
+    if (values.empty() || *value == 0.0) continue;
+    at = bytes.find(std::string(reinterpret_cast<const char*>(value), 8));
+    if (at != std::string::npos) break;
+  }
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 2] ^= 0x04;
+  {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out << bytes;
+  }
+  const std::string error = test::error_of<InputError>([&] { (void)read_checkpoint(file, c.config_hash); });
+  EXPECT_EQ(error.rfind(file.string() + ": not a usable checkpoint: " + file.string() + ": dataset '", 0), 0u) << error;
+  EXPECT_THAT(error, ::testing::HasSubstr("': cannot read (corrupt storage or checksum mismatch)"));
 }
 
 }  // namespace

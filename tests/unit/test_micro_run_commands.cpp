@@ -342,6 +342,58 @@ TEST_F(MicroRunCommands, EnsembleRecordsFailuresResumesAndFeedsTheCalibrateReade
   EXPECT_EQ(log_.calls, 14);
 }
 
+// A finished cell whose files fail their checksums is computed again, with a warning naming it, and the
+// ensemble is the same as before: one byte of a stress in curves.h5 flipped, then a digit of summary.json.
+TEST_F(MicroRunCommands, EnsembleComputesAgainACorruptedFinishedCellWithAWarning) {
+  const fs::path config = ensemble_config({0.003}, 2);
+  const fs::path out = dir_ / "ens";
+  const std::vector<std::string> sets = {"cell.discretization.mesh=false"};
+  testing::internal::CaptureStderr();
+  ASSERT_EQ(ensemble(config, sets, out), kExitOk);
+  testing::internal::GetCapturedStderr();
+  ASSERT_EQ(log_.calls, 2);
+  const Ensemble before = read_ensemble(out / "ensemble.h5");
+  const fs::path cell = out / "size_3.0mm" / "cell_01";
+
+  const std::vector<double> sigma = H5Reader(cell / "curves.h5").read_doubles("states/sigma_bar").values;
+  ASSERT_GT(sigma.size(), 4u);
+  const double value = sigma[sigma.size() / 2];
+  ASSERT_NE(value, 0.0);
+  std::string bytes = test::read_file(cell / "curves.h5");
+  const std::size_t at = bytes.find(std::string(reinterpret_cast<const char*>(&value), sizeof value));
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 3] ^= 0x01;
+  std::ofstream(cell / "curves.h5", std::ios::binary | std::ios::trunc) << bytes;
+  testing::internal::CaptureStderr();
+  testing::internal::CaptureStdout();  // the log (spdlog's default logger writes to stdout here)
+  ASSERT_EQ(ensemble(config, sets, out), kExitOk);
+  std::string log = testing::internal::GetCapturedStdout();
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(log_.calls, 3);
+  EXPECT_NE(log.find(cell.string() + ": the finished cell does not read back (" + (cell / "curves.h5").string() +
+                     ": dataset 'states/sigma_bar': "),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("it is computed again"), std::string::npos) << log;
+  EXPECT_EQ(read_ensemble(out / "ensemble.h5").stress_mean_Pa, before.stress_mean_Pa);
+
+  std::string summary = test::read_file(cell / "summary.json");
+  const std::size_t digit = summary.find("\"dofs\": ") + 8;
+  summary[digit] = summary[digit] == '7' ? '8' : '7';
+  std::ofstream(cell / "summary.json", std::ios::trunc) << summary;
+  testing::internal::CaptureStderr();
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(ensemble(config, sets, out), kExitOk);
+  log = testing::internal::GetCapturedStdout();
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(log_.calls, 4);
+  EXPECT_NE(log.find(cell.string() + ": the finished cell does not read back (summary.json: its values do not match "
+                                     "'checksum_fnv1a64'): it is computed again"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(read_ensemble(out / "ensemble.h5").stress_mean_Pa, before.stress_mean_Pa);
+}
+
 TEST_F(MicroRunCommands, EnsembleWithASizeWithoutUsableCellsExitsOneAndWritesTheRest) {
   const fs::path out = dir_ / "ens";
   testing::internal::CaptureStderr();

@@ -18,6 +18,18 @@
 // file or the library reports ("<file>: dataset '<name>': not found"). The HDF5 library's own error
 // printing is suppressed during these calls; its innermost message is put into the exception.
 // Not thread-safe: use one object from one thread (the serial HDF5 library is not thread-safe).
+//
+// Integrity (docs/architecture.md, section 2.7): every file written here carries checksums that every
+// read verifies. The file format is pinned to HDF5 1.10's (superblock v3, object headers, groups and
+// chunk indices with Jenkins checksums over all metadata, attributes included), every dataset with
+// values is chunked with the Fletcher32 filter (empty ones are compact: their shape is in the
+// checksummed object header) and carries the attribute "checksum_fnv1a64_words", a 64-bit FNV-1a over
+// the words of its values as stored (Fletcher32 cannot tell a 16-bit word 0x0000 from 0xffff), and the root attribute
+// "checksums" marks the file as such. A mismatch is a std::runtime_error naming the file. Files without the mark (written before, or by another
+// program) are read only when the reader allows it (H5Checksums::optional), and only after a forked
+// child process has read every object of the file: corrupt metadata of the older formats can crash
+// libhdf5 (a SIGSEGV in H5Lexists for one bad B-tree address), which then ends the child, not the
+// program, and becomes a std::runtime_error naming the file.
 // <hdf5.h> stays out of this header on purpose: users of the library do not need HDF5 to compile.
 #include <cstddef>
 #include <cstdint>
@@ -42,9 +54,16 @@ struct H5Array {
 };
 
 struct H5WriteOptions {
-  // 0: contiguous, uncompressed (default: fastest, and readable by any HDF5 tool).
-  // 1..9: chunked datasets with shuffle + gzip at that level (smaller files for smooth fields).
+  // 0: uncompressed (default: fastest). 1..9: shuffle + gzip at that level (smaller files for smooth
+  // fields). Either way the datasets are chunked and checksummed (Fletcher32).
   int gzip_level = 0;
+};
+
+// Whether a reader accepts a file that carries no checksums (no root attribute "checksums": written by
+// an earlier version or another program). A file that carries them is verified whatever this says.
+enum class H5Checksums {
+  required,  // our own files read back (checkpoints, fields appended on restart): refused without
+  optional,  // files from elsewhere (a user's ensemble.h5, archived cells): checked in a child process
 };
 
 namespace detail {
@@ -172,7 +191,9 @@ class H5Appender : public H5Output {
 // Read-only access to a result file.
 class H5Reader {
  public:
-  explicit H5Reader(const std::filesystem::path& path);
+  // Throws std::runtime_error naming the file when it is missing, not HDF5, fails its checksums, carries
+  // none and `checksums` is required, or (without them) cannot be read whole by the checking child.
+  explicit H5Reader(const std::filesystem::path& path, H5Checksums checksums = H5Checksums::required);
   H5Reader(H5Reader&&) noexcept;
   H5Reader& operator=(H5Reader&&) noexcept;
   ~H5Reader();
@@ -200,10 +221,18 @@ class H5Reader {
   Provenance provenance() const;
 
   const std::filesystem::path& path() const { return path_; }
+  // True when the file carries checksums (the root attribute "checksums"), all verified on reading.
+  bool checksummed() const { return checksummed_; }
 
  private:
   std::filesystem::path path_;
   std::unique_ptr<detail::H5FileState> state_;
+  bool checksummed_ = false;
 };
+
+// Opens `path` in a forked child process and reads every group, dataset and attribute in it; throws
+// std::runtime_error naming the file when that fails or the child dies (a signal, or no end within a
+// time proportional to the file's size). The parent process never parses the file.
+void check_hdf5_file_in_child(const std::filesystem::path& path);
 
 }  // namespace uhpc

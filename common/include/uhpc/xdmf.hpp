@@ -71,7 +71,9 @@ class ParticleFieldWriter {
                                H5WriteOptions options = {});
   // Goes on with the output of an interrupted run: keeps `steps` (what a checkpoint recorded of the
   // existing "<basename>.h5"), removes any later step group the run wrote after it, and rewrites the
-  // .xdmf. Throws std::runtime_error when the .h5 lacks one of `steps`.
+  // .xdmf. The kept steps' values are read once, so that their checksums are verified (hdf5_io.hpp).
+  // Throws std::runtime_error naming the file when the .h5 lacks one of `steps`, carries no checksums
+  // or fails them.
   ParticleFieldWriter(std::filesystem::path dir, std::string basename, std::vector<XdmfStep> steps,
                       H5WriteOptions options = {});
 
