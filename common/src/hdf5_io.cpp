@@ -1,6 +1,7 @@
 #include "uhpc/hdf5_io.hpp"
 
 #include <hdf5.h>
+#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -56,6 +57,19 @@ const bool kNoHdf5ExitHandler = [] {
   H5dont_atexit();
   return true;
 }();
+
+}  // namespace
+
+#if defined(__SANITIZE_ADDRESS__)
+// After a checksum failure libhdf5 1.10.8 also loses the corrupt cache entry (one direct leak of a few
+// hundred bytes, allocated and dropped inside the library), so under LeakSanitizer every refused corrupt
+// file would turn exit 2 into exit 1. The library's own allocations are not ours to fix: they are
+// suppressed here, beside the code that reads through it. Handles our code leaves open are not hidden by
+// this: without the exit handler they stay reachable from the library's id tables, never a leak report.
+extern "C" const char* __lsan_default_suppressions() { return "leak:libhdf5\n"; }
+#endif
+
+namespace {
 
 // HDF5 prints its whole error stack to stderr by default. We report errors ourselves (with the
 // innermost HDF5 message in the exception), so the printing is switched off while one of our calls
@@ -849,8 +863,12 @@ void check_hdf5_file_in_child(const std::filesystem::path& path) {
     throw std::runtime_error(name + ": cannot check the file: fork: " + std::strerror(errno));
   }
   if (child == 0) {
-    // Only HDF5 and this thread run here; _exit skips every handler of the parent's.
+    // Only HDF5 and this thread run here; _exit skips every handler of the parent's. The verdict goes
+    // through the pipe; whatever the library (or a sanitizer) prints while it fails is the child's
+    // noise and would break the parent's one error line, so the child's stderr goes nowhere.
     ::close(pipe_fds[0]);
+    const int devnull = ::open("/dev/null", O_WRONLY);
+    if (devnull >= 0) ::dup2(devnull, STDERR_FILENO);
     const std::string error = read_whole_file(path);
     write_all(pipe_fds[1], error);
     ::_exit(error.empty() ? 0 : 3);
