@@ -132,8 +132,9 @@ TEST_F(MacroApp, FixedRimReactionsCloseTheMomentumBalance) {
   // compiler's round-off: a change of the contact, the solver or the rim that moves it more is a result to
   // re-measure and state in macro/README.md, not noise.
   EXPECT_NEAR(impulse_z, -0.550, 0.011);
-  EXPECT_LT(r.at("momentum").at("worst_balance_error").get<double>(), 1e-8);
-  EXPECT_LT(r.at("energy").at("worst_balance_error").get<double>(), 5e-3);
+  // Round-off (2-3e-15 measured) and velocity Verlet's error through the contact (1.12-1.16e-3 measured).
+  EXPECT_LT(r.at("momentum").at("worst_balance_error").get<double>(), 1e-12);
+  EXPECT_LT(r.at("energy").at("worst_balance_error").get<double>(), 2.5e-3);
 }
 
 TEST(MacroCaseSetup, RimParticlesAreThoseWithinTheRimWidth) {
@@ -401,8 +402,9 @@ TEST_F(MacroApp, TheFrameHoldsTheRimBandAlongTheAxisOnly) {
   EXPECT_GT(std::fabs(impulse[2].get<double>()), 1e-4);  // the lips and the plate hold the band
   EXPECT_EQ(impulse[0].get<double>(), 0.0);
   EXPECT_EQ(impulse[1].get<double>(), 0.0);
-  EXPECT_LT(r.at("momentum").at("worst_balance_error").get<double>(), 1e-8);
-  EXPECT_LT(r.at("energy").at("worst_balance_error").get<double>(), 5e-3);
+  // Round-off (2-3e-15 measured) and velocity Verlet's error through the contact (1.12-1.16e-3 measured).
+  EXPECT_LT(r.at("momentum").at("worst_balance_error").get<double>(), 1e-12);
+  EXPECT_LT(r.at("energy").at("worst_balance_error").get<double>(), 2.5e-3);
 }
 
 // A sphere that stops in the target (a soft J2 block) is decided as embedded and the run ends there

@@ -111,7 +111,9 @@ void conserves_momentum_and_energy(StrainConfiguration strain, const SphereConta
   EXPECT_LT(vz, 0.0);                             // it bounced off the elastic block
   EXPECT_GT(block_pz, 1.2 * kMass * 100.0);       // more than M v0 went into the block
   EXPECT_LT(worst_p, 1e-12);
-  EXPECT_LT(worst_e, 5e-3);
+  // Velocity Verlet's error through the contact: 1.16e-3 measured with the kinematic contact, 1.96e-3 with
+  // the penalty (whose stiff spring the step resolves less well); each bound about 2x its measurement.
+  EXPECT_LT(worst_e, contact.model == SphereContactModel::Penalty ? 4e-3 : 2.5e-3);
   if (contact.model == SphereContactModel::Penalty) {
     EXPECT_LT(worst_ledger_gap, 0.05 * peak_stored);
   } else {
@@ -226,7 +228,7 @@ TEST(MacroSphereContact, CoulombFrictionTakesMuTimesTheNormalImpulseWhileSliding
     const ObliqueOutcome o = oblique_impact(penalty(1.0, mu));
     EXPECT_NEAR(o.impulse_ratio, mu, 0.01 * mu);
     EXPECT_LT(o.momentum_error, 1e-12);
-    EXPECT_LT(o.energy_error, 5e-3);
+    EXPECT_LT(o.energy_error, 3e-3);  // 0.9-1.7e-3 measured
     // The loss is friction's, not the integrator's (whose share shows in the frictionless run).
     EXPECT_GT(o.friction_loss, 50.0 * std::fabs(frictionless.friction_loss));
   }
@@ -236,7 +238,7 @@ TEST(MacroSphereContact, CoulombFrictionTakesMuTimesTheNormalImpulseWhileSliding
     const ObliqueOutcome o = oblique_impact(kinematic(mu));
     EXPECT_NEAR(o.impulse_ratio, mu, 0.01 * mu);
     EXPECT_LT(o.momentum_error, 1e-12);
-    EXPECT_LT(o.energy_error, 5e-3);
+    EXPECT_LT(o.energy_error, 3e-3);  // 0.9-1.7e-3 measured
   }
 }
 
