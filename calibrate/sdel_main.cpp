@@ -19,6 +19,7 @@
 #include "uhpc/config.hpp"
 #include "uhpc/hdf5_io.hpp"
 #include "uhpc/logging.hpp"
+#include "uhpc/output_lock.hpp"
 #include "uhpc/provenance.hpp"
 #include "uhpc/sdel_handoff.hpp"
 
@@ -66,6 +67,7 @@ int run(const std::string& config_path, const std::vector<std::string>& override
         const fs::path& out) {
   const uhpc::Config cfg = uhpc::Config::load(config_path, overrides);
   const Settings s = read_settings(cfg, sdel_option);
+  const uhpc::OutputLock lock = uhpc::lock_output_directory(out, "uhpc-sdel");
   const uhpc::SdelHandoff handoff = uhpc::read_sdel_handoff(s.sdel_file);
   spdlog::info("SDEL from {} (a={}, A={}, nu={}, chi={})", s.sdel_file, handoff.constants.a, handoff.constants.A,
                handoff.constants.nu, handoff.constants.chi);
@@ -76,7 +78,6 @@ int run(const std::string& config_path, const std::vector<std::string>& override
                                       s.youngs_modulus_Pa));
 
   const uhpc::Provenance provenance = uhpc::Provenance::make("uhpc-sdel", cfg.hash());
-  fs::create_directories(out);
   {
     uhpc::H5Writer h5(out / "sdel_curves.h5");
     const std::size_t n = curves.size(), m = static_cast<std::size_t>(s.points);

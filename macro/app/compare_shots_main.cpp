@@ -31,6 +31,7 @@
 #include "uhpc/data_dir.hpp"
 #include "uhpc/errors.hpp"
 #include "uhpc/hash.hpp"
+#include "uhpc/output_lock.hpp"
 #include "uhpc/provenance.hpp"
 
 namespace fs = std::filesystem;
@@ -101,6 +102,7 @@ int main(int argc, char** argv) {
       shots.push_back(uhpc::macro::shot_from_result_json(j, file, label));
     }
     const fs::path out_dir(out);
+    const uhpc::OutputLock lock = uhpc::lock_output_directory(out_dir, "uhpc-compare-shots");
 
     if (spread) {
       std::size_t ref = 0;

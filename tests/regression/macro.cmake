@@ -72,6 +72,10 @@ set(_cmp_dir tests/regression/compare_shots)
 uhpc_regression_case(NAME compare_shots OUTPUT comparison.json
   COMMAND ${_cmp} ${_cmp_tables} --results ${_cmp_dir}/v1112 ${_cmp_dir}/v610 ${_cmp_dir}/v903 ${_cmp_dir}/v689/
           ${_cmp_dir}/v992/result.json ${_cmp_dir}/v613 ${_cmp_dir}/v817)
+uhpc_bad_input_case(NAME compare_shots_output_in_use
+  STDERR "error: ${UHPC_REGRESSION_OUT}/bad_compare_locked: in use by pid 4242 (a test holding the lock) on host ctest since 2026-12-06T16:00:00Z: wait for it to end or write elsewhere (lock file ${UHPC_REGRESSION_OUT}/bad_compare_locked/.uhpc.lock)"
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/hold_lock.sh ${UHPC_REGRESSION_OUT}/bad_compare_locked/.uhpc.lock
+          ${_cmp} ${_cmp_tables} --results ${_cmp_dir}/v610 --out ${UHPC_REGRESSION_OUT}/bad_compare_locked)
 set(_cmp_spread tests/regression/compare_shots_spread)
 uhpc_regression_case(NAME compare_shots_spread OUTPUT spread.json
   COMMAND ${_cmp} --spread --reference graded --results ${_cmp_spread}/uniform_3.0mm ${_cmp_spread}/graded
