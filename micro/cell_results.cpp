@@ -12,6 +12,7 @@
 #include "cell_io.hpp"
 #include "ensemble_curves.hpp"
 #include "uhpc/atomic_file.hpp"
+#include "uhpc/config.hpp"
 #include "uhpc/errors.hpp"
 #include "uhpc/hash.hpp"
 #include "uhpc/hdf5_io.hpp"
@@ -98,7 +99,12 @@ CellResponse run_analyzer(const CellAnalyzer& analyzer, const CellJob& job, cons
 
 std::string cell_hash(const CellJob& job) {
   return fnv1a64_hex(fmt::format("{}|{:.17g}|{}|{}|{:.17g}|r{}", job.settings.config_hash, job.size_m, job.seed,
-                                 job.analysis.dump(), job.curve_end_strain, kFractureSolverRevision));
+                                 without_notes(job.analysis).dump(), job.curve_end_strain, kFractureSolverRevision));
+}
+
+std::string former_cell_hash(const CellJob& job) {
+  return fnv1a64_hex(fmt::format("{}|{:.17g}|{}|{}|{:.17g}|r{}", job.settings.config_hash_including_notes, job.size_m,
+                                 job.seed, job.analysis.dump(), job.curve_end_strain, kFractureSolverRevision));
 }
 
 namespace {
@@ -287,7 +293,7 @@ void check_checksums_paired(bool summary_checksummed, bool curves_checksummed) {
 }  // namespace
 
 std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::string& expected_cell_hash,
-                                            const std::string& expected_post_hash) {
+                                            const std::string& expected_post_hash, const std::string& former_cell_hash) {
   std::error_code ec;
   if (!fs::exists(dir / "summary.json", ec) || !fs::exists(dir / "curves.h5", ec)) return std::nullopt;
   // A finished cell that does not read back (corrupt or altered files) is computed again, with a warning;
@@ -307,8 +313,10 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
     return corrupt(std::string("summary.json: ") + e.what());
   }
   try {
-    if (j.at("format") != kCellSummaryFormat || j.at("cell_hash") != expected_cell_hash) return std::nullopt;
+    const bool former = !former_cell_hash.empty() && j.at("cell_hash") == former_cell_hash;
+    if (j.at("format") != kCellSummaryFormat || (j.at("cell_hash") != expected_cell_hash && !former)) return std::nullopt;
     StoredCell s;
+    s.former_hash = former;
     CellResponse& r = s.response;
     const std::optional<CellStatus> status = status_from_name(j.at("status").get<std::string>());
     if (!status) return corrupt("summary.json: unknown status");

@@ -70,8 +70,11 @@ CellResponse run_analyzer(const CellAnalyzer& analyzer, const CellJob& job, cons
 inline constexpr int kFractureSolverRevision = 3;
 
 // What identifies a cell's solve: the cell settings, size, seed, the analysis section and
-// kFractureSolverRevision.
+// kFractureSolverRevision; the configs' values, not their notes (Config::hash).
 std::string cell_hash(const CellJob& job);
+// The same in the scheme before 2026-12-06, which hashed the notes too: a cell recorded under it is
+// still reloaded, and re-stamped with cell_hash.
+std::string former_cell_hash(const CellJob& job);
 
 // Writes DIR/curves.h5 then DIR/summary.json (each atomically; summary.json last, so its presence
 // means the cell is finished). `program` goes into the provenance.
@@ -82,14 +85,17 @@ void write_cell_results(const std::filesystem::path& dir, const CellJob& job, co
 nlohmann::json cell_summary_json(const CellJob& job, const CellResult& result, const PostOptions& options,
                                  const Provenance& provenance);
 
-// A previous run's response of this cell, when DIR/summary.json exists with this cell_hash and
-// DIR/curves.h5 reads back; std::nullopt otherwise (the cell is then run again). `post_hash_matches`
-// says whether the files were post-processed with the current options.
+// A previous run's response of this cell, when DIR/summary.json exists with this cell_hash (or
+// `former_cell_hash`, when given) and DIR/curves.h5 reads back; std::nullopt otherwise (the cell is then
+// run again). `post_hash_matches` says whether the files were post-processed with the current options,
+// `former_hash` whether they carry the former hash; either way the caller writes them again.
 struct StoredCell {
   CellResponse response;
   bool post_hash_matches = false;
+  bool former_hash = false;
 };
 std::optional<StoredCell> load_cell_results(const std::filesystem::path& dir, const std::string& expected_cell_hash,
-                                            const std::string& expected_post_hash);
+                                            const std::string& expected_post_hash,
+                                            const std::string& former_cell_hash = "");
 
 }  // namespace uhpc::micro

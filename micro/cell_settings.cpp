@@ -161,6 +161,7 @@ CellSettings load_cell_settings(const std::string& cell_config_path, std::vector
   micro.finish();
   cell.finish();
   s.config_hash = fnv1a64_hex(cell.hash() + micro.hash());
+  s.config_hash_including_notes = fnv1a64_hex(cell.hash_including_notes() + micro.hash_including_notes());
   try {
     check_cell_options(s.cell);
   } catch (const CellGenerationError& e) {

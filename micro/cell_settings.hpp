@@ -21,6 +21,7 @@ struct CellSettings {
   std::uint64_t seed = 0;
   std::string microstructure_file;  // as resolved (relative paths are relative to the cell config)
   std::string config_hash;          // hash of the effective cell config and microstructure together
+  std::string config_hash_including_notes;  // the same in the former scheme (Config::hash_including_notes)
   // Where the cell side came from, for messages: the cell config's cell_size_m, or an ensemble's
   // cell_sizes_m entry that replaced it (load_cell_settings' size_override_m).
   std::string side_input = "cell_size_m";

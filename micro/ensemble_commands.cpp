@@ -178,13 +178,16 @@ bool reload_cell(const EnsembleInputs& in, const EnsembleSelection& selection, C
   if (!fs::is_directory(o.job.out_dir)) return false;
   // Read (and refreshed) by this run alone: a cell another run is analysing stops this one, exit 2.
   const OutputLock lock = lock_output_directory(o.job.out_dir, "uhpc-micro ensemble");
-  std::optional<StoredCell> stored = load_cell_results(o.job.out_dir, cell_hash(o.job), in.post_hash);
+  std::optional<StoredCell> stored =
+      load_cell_results(o.job.out_dir, cell_hash(o.job), in.post_hash, former_cell_hash(o.job));
   if (!stored || (stored->response.status == CellStatus::Failed && in.e.retry_failed && !selection.assemble_only))
     return false;
   o.result = post_process(std::move(stored->response), in.e.post);
   o.result.reloaded = true;
-  // Post-processing options changed since: refresh the derived data in the cell's files.
-  if (!stored->post_hash_matches) write_cell_results(o.job.out_dir, o.job, o.result, in.e.post, "uhpc-micro ensemble");
+  // Post-processing options changed since, or the cell was stamped with the former hash (notes included):
+  // write its files again, derived data and hash of today.
+  if (!stored->post_hash_matches || stored->former_hash)
+    write_cell_results(o.job.out_dir, o.job, o.result, in.e.post, "uhpc-micro ensemble");
   return true;
 }
 

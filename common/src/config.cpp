@@ -501,7 +501,24 @@ const Json& Config::json() const { return std::as_const(shared_->document).at(po
 
 const std::string& Config::source() const { return shared_->source; }
 
-std::string Config::hash() const { return fnv1a64_hex(shared_->document.dump()); }
+Json without_notes(const Json& doc) {
+  if (doc.is_object()) {
+    Json out = Json::object();
+    for (const auto& [key, value] : doc.items())
+      if (key != "notes") out[key] = without_notes(value);
+    return out;
+  }
+  if (doc.is_array()) {
+    Json out = Json::array();
+    for (const Json& value : doc) out.push_back(without_notes(value));
+    return out;
+  }
+  return doc;
+}
+
+std::string Config::hash() const { return fnv1a64_hex(without_notes(shared_->document).dump()); }
+
+std::string Config::hash_including_notes() const { return fnv1a64_hex(shared_->document.dump()); }
 
 // ---------------------------------------------------------------------------------------------
 // Overrides

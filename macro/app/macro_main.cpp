@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
                "run.checkpoint_interval_steps > 0) instead of starting at t = 0");
   app.add_flag("--inputs-hash", args.inputs_hash,
                "print the hash of this run's inputs (the case with --set, the files it reads: result.json's "
-               "provenance.config_hash) and exit, writing nothing");
+               "provenance.config_hash), then on a second line the same in the scheme before 2026-12-06 "
+               "(the case's notes hashed too), and exit, writing nothing");
   auto* reuse = app.add_flag("--reuse", args.reuse,
                "keep a finished run already in OUT when its result.json was made from these inputs (the same "
                "provenance.config_hash); exit 2 when it was made from other inputs");

@@ -165,7 +165,8 @@ void refuse_beyond_size_budget(const Config& cfg, const CaseSettings& settings) 
 // --reuse: true when `result` holds a finished run of the inputs whose hash is `hash`; false when there is
 // none (the run goes ahead); an InputError when it holds a run of other inputs (a make rule would
 // otherwise take an answer made with another end time, SDEL or --set for this one).
-bool reuse_finished_run(const fs::path& result, const std::string& hash) {
+bool reuse_finished_run(const fs::path& result, const RunInputs& inputs) {
+  const std::string& hash = inputs.hash;
   if (!fs::exists(result)) return false;
   std::ifstream in(result, std::ios::binary);
   std::string recorded;
@@ -174,6 +175,11 @@ bool reuse_finished_run(const fs::path& result, const std::string& hash) {
   } catch (const nlohmann::json::exception& e) {
     throw InputError(result.string() + ": not a run's result (provenance.config_hash unreadable: " + e.what() +
                      "): delete its directory to run it again");
+  }
+  if (recorded == inputs.former_hash) {
+    spdlog::info("{}: a finished run of these inputs (hashed with the case's notes, as before 2026-12-06), kept",
+                 result.string());
+    return true;
   }
   if (recorded != hash)
     throw InputError(fmt::format("{}: made from other inputs (config_hash {}, these inputs {}): delete its directory "
@@ -201,14 +207,14 @@ void run_macro(const MacroRunArgs& args) {
 
   const RunInputs inputs = run_inputs(cfg, args.config_path, args.overrides, args.sdel_path, material.inputs);
   if (args.inputs_hash) {
-    std::cout << inputs.hash << std::endl;
+    std::cout << inputs.hash << '\n' << inputs.former_hash << std::endl;
     return;
   }
   if (args.reuse_check) {
-    std::cout << (reuse_finished_run(args.out / "result.json", inputs.hash) ? "kept" : "run") << std::endl;
+    std::cout << (reuse_finished_run(args.out / "result.json", inputs) ? "kept" : "run") << std::endl;
     return;
   }
-  if (args.reuse && reuse_finished_run(args.out / "result.json", inputs.hash)) return;
+  if (args.reuse && reuse_finished_run(args.out / "result.json", inputs)) return;
   const fs::path checkpoint_file = args.out / "checkpoint.h5";
   std::optional<RunCheckpoint> resumed;
   if (args.restart) {

@@ -46,8 +46,8 @@ RunInputs run_inputs(const Config& cfg, const std::string& case_file, const std:
   RunInputs r;
   r.record = {{"case_file", case_file}, {"overrides", overrides}, {"case", cfg.json()}, {"files", files},
               {"sdel", sdel}};
-  // The case enters through its effective document (cfg, after --set), not its bytes: a note or the
-  // layout of the file does not make another run, a value does, in the file or by --set alike. The
+  // The case enters through its effective document (cfg, after --set) without its notes, not its bytes:
+  // a note or the layout of the file does not make another run, a value does, in the file or by --set. The
   // material constants enter through their file's bytes; the SDEL through the values the law uses (its
   // constants, l_mac, strain measure), not its bytes: a handoff fitted again to the same constants (a new
   // date in its provenance, as `make paper` and the quickstart write it) makes no other run, and a
@@ -61,7 +61,8 @@ RunInputs run_inputs(const Config& cfg, const std::string& case_file, const std:
     data_hashes += fnv1a64_hex(values.dump());
   }
   r.hash = fnv1a64_hex(cfg.hash() + data_hashes);
-  nlohmann::json resumable = cfg.json();
+  r.former_hash = fnv1a64_hex(cfg.hash_including_notes() + data_hashes);
+  nlohmann::json resumable = without_notes(cfg.json());
   for (const char* key : kRestartMayChange) resumable.at("run").erase(key);
   r.restart_hash = fnv1a64_hex(fnv1a64_hex(resumable.dump()) + data_hashes);
   r.record["hash"] = r.hash;

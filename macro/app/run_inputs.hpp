@@ -17,6 +17,8 @@ struct RunInputs {
   nlohmann::json record;     // config.json
   std::string hash;          // fnv1a64 of the effective case document and of every other file read
   std::string restart_hash;  // the same without the keys a restart may change (kRestartMayChange)
+  std::string former_hash;   // `hash` in the scheme before 2026-12-06 (the case's notes hashed too), only
+                             // to recognise a finished run recorded then as one of these inputs
 };
 
 // The keys of `run` a restart may change: when the run ends, its step budget and how often it writes;

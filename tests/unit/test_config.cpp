@@ -448,5 +448,20 @@ TEST(ConfigHash, IndependentOfKeyOrderAndChangedByOverrides) {
   EXPECT_EQ(a.hash(), make(R"({"x": 1, "y": {"p": [1, 2], "q": "s"}})", {"x=1"}).hash());
 }
 
+// A docs edit makes no result stale (issue 50): the notes, at any depth, are not hashed; every value is.
+TEST(ConfigHash, LeavesOutTheNotesAtAnyDepth) {
+  const Config plain = make(R"({"x": 1, "y": {"p": [1, {"q": 2}]}})");
+  const Config noted = make(R"({"notes": "why x is 1", "x": 1, "y": {"notes": "a", "p": [1, {"q": 2, "notes": "b"}]}})");
+  const Config edited = make(R"({"notes": "edited", "x": 1, "y": {"notes": "c", "p": [1, {"q": 2, "notes": "d"}]}})");
+  EXPECT_EQ(plain.hash(), noted.hash());
+  EXPECT_EQ(noted.hash(), edited.hash());
+  EXPECT_NE(noted.hash(), make(R"({"notes": "why x is 1", "x": 1, "y": {"notes": "a", "p": [1, {"q": 3}]}})").hash());
+  EXPECT_NE(noted.hash(), make(R"({"notes": "why x is 1", "x": 1, "y": {"p": [1, {"q": 2}]}, "z": "text"})").hash());
+  // The former scheme hashed the whole document, notes too: only to recognise results recorded then.
+  EXPECT_EQ(plain.hash_including_notes(), plain.hash());
+  EXPECT_NE(noted.hash_including_notes(), edited.hash_including_notes());
+  EXPECT_NE(noted.hash_including_notes(), noted.hash());
+}
+
 }  // namespace
 }  // namespace uhpc

@@ -236,7 +236,8 @@ TEST_F(MacroApp, TheRunRecordsEveryFileItReadAndTheSdelItUsed) {
 }
 
 // --inputs-hash prints what the run's result.json would carry as provenance.config_hash (the pipelines
-// reuse a run only when the two agree) and writes nothing; another --set gives another hash.
+// reuse a run only when the two agree), then the same in the former scheme (notes hashed too), and
+// writes nothing; another --set gives another hash, another note does not.
 TEST_F(MacroApp, InputsHashIsTheRunsConfigHashAndWritesNothing) {
   MacroRunArgs args = block_args({"run.end_time_s=1e-7"}, dir_ / "run");
   const auto hash_of = [](MacroRunArgs a) {
@@ -249,7 +250,9 @@ TEST_F(MacroApp, InputsHashIsTheRunsConfigHashAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "run"));  // --out given, nothing written there
   run_macro(args);
   const auto result = nlohmann::json::parse(test::read_file(dir_ / "run" / "result.json"));
-  EXPECT_EQ(printed, result.at("provenance").at("config_hash").get<std::string>() + "\n");
+  const std::string hash = result.at("provenance").at("config_hash").get<std::string>();
+  ASSERT_EQ(printed.size(), 2 * (hash.size() + 1));
+  EXPECT_EQ(printed.substr(0, hash.size() + 1), hash + "\n");
   // The block is 16 mm at 4 mm: the run says it is too thin to resolve a penetration, in the log and here.
   ASSERT_EQ(result.at("warnings").size(), 1u);
   EXPECT_EQ(result.at("warnings")[0].at("code"), "thin_target");
@@ -260,7 +263,34 @@ TEST_F(MacroApp, InputsHashIsTheRunsConfigHashAndWritesNothing) {
   EXPECT_EQ(WEXITSTATUS(std::system((program + " 2> /dev/null").c_str())), 2);
   MacroRunArgs other = args;
   other.overrides.push_back("projectile.velocity_m_s=101");
-  EXPECT_NE(hash_of(other), printed);
+  EXPECT_NE(hash_of(other).substr(0, hash.size()), hash);
+  MacroRunArgs noted = args;
+  noted.overrides.push_back("notes=the same case, documented otherwise");
+  EXPECT_EQ(hash_of(noted).substr(0, hash.size()), hash);
+  EXPECT_NE(hash_of(noted).substr(hash.size() + 1), printed.substr(hash.size() + 1));  // the former scheme's
+}
+
+// A run recorded before 2026-12-06 carries the hash of the former scheme (the case's notes hashed too):
+// --reuse still keeps it as a run of these inputs.
+TEST_F(MacroApp, ReuseKeepsARunRecordedUnderTheFormerHash) {
+  MacroRunArgs args = block_args({"run.end_time_s=1e-7"}, dir_ / "run");
+  run_macro(args);
+  MacroRunArgs printing = args;
+  printing.inputs_hash = true;
+  testing::internal::CaptureStdout();
+  run_macro(printing);
+  const std::string printed = testing::internal::GetCapturedStdout();
+  const std::string former = printed.substr(printed.find('\n') + 1, 16);
+  const std::filesystem::path result = dir_ / "run" / "result.json";
+  nlohmann::json r = nlohmann::json::parse(test::read_file(result));
+  r["provenance"]["config_hash"] = former;
+  std::ofstream(result) << r.dump(2);
+  const std::string recorded = test::read_file(result);
+  std::filesystem::remove(dir_ / "run" / "history.csv");
+  args.reuse = true;
+  run_macro(args);
+  EXPECT_EQ(test::read_file(result), recorded);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "run" / "history.csv"));
 }
 
 // --reuse (the make rules' runs): a finished run of the same inputs is kept untouched, one of other

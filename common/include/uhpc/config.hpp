@@ -103,8 +103,13 @@ class Config {
 
   const nlohmann::json& json() const;   // the effective document (overrides applied), this root
   const std::string& source() const;    // the file name (or source given to from_json)
-  // fnv1a64_hex of the effective whole document, dumped canonically (sorted keys, no spaces).
+  // fnv1a64_hex of the effective whole document, dumped canonically (sorted keys, no spaces), without
+  // its free text: every member named "notes", at any depth, is left out. Notes document a file (the
+  // programs accept them and never read them), so editing one changes no hash and makes no result stale.
   std::string hash() const;
+  // The same with the notes: how results were hashed before 2026-12-06, only to recognise finished work
+  // recorded then (a reloaded cell, a kept run), which is re-stamped with hash().
+  std::string hash_including_notes() const;
 
  private:
   struct Shared;
@@ -125,5 +130,9 @@ class Config {
 // Applies one "key.path=value" override to a document (used by Config::load; exposed for tests and
 // for programs that build their configs in memory). Throws InputError naming `source`.
 void apply_override(nlohmann::json& document, const std::string& assignment, const std::string& source);
+
+// `doc` without its free text: every object member named "notes", at any depth (what Config::hash
+// leaves out; for other documents that identify a result, such as a section hashed on its own).
+nlohmann::json without_notes(const nlohmann::json& doc);
 
 }  // namespace uhpc
