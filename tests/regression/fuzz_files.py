@@ -20,7 +20,8 @@ sdel.json). A signal, a timeout, "internal error" or another answer fails the te
 Plus the corruption that crashed libhdf5 1.10.8 (SIGSEGV in H5Lexists): the v1 group B-tree address of
 the root group's symbol-table message (and, separately, of the superblock's cached copy) set to ff x 8,
 in files of the format before HDF5 1.8, which have no checksums: the shipped ensemble_4x10.h5
-(uhpc-calibrate --ensemble), an archived cell's curves.h5 (uhpc-micro ensemble resuming over it: the cell
+(uhpc-calibrate --ensemble), a cell's curves.h5 of that format (tests/regression/micro_former_hash_cell, the
+archive's cell_00 as written before the archive carried checksums; uhpc-micro ensemble resuming over it: the cell
 is reported and not reloaded, exit 2 under --assemble-only) and a checkpoint copied into that format
 (uhpc-macro --restart). Each must be exit 2 naming the file.
 """
@@ -224,11 +225,17 @@ def main():
     legacy_fit = tmp / "fit_legacy" / "sdel.json"
     shipped = data / "micro_analysis_ensemble_cells" / "ensemble_4x10.h5"
     setup([calibrate, "--ensemble", str(shipped), "--out", str(legacy_fit)], "uhpc-calibrate on ensemble_4x10.h5")
+    # The archive is written with checksums; the format before 1.8 is the fixture's cell_00 (stamped before
+    # 2026-12-06, reloaded under its former hash) in place of the archive's.
+    legacy = tmp / "micro_legacy"
+    shutil.copytree(archived, legacy)
+    shutil.rmtree(legacy / cell_dir)
+    shutil.copytree(src / "tests" / "regression" / "micro_former_hash_cell" / cell_dir, legacy / cell_dir)
     legacy_assembled = tmp / "micro_legacy_reference"
-    shutil.copytree(archived, legacy_assembled)
+    shutil.copytree(legacy, legacy_assembled)
     setup(ensemble_cmd + ["--assemble-only", "--out", str(legacy_assembled)], "assembling the archived cell")
     for what, original in (("ensemble_4x10.h5", shipped.read_bytes()),
-                           ("archived curves.h5", (archived / cell_dir / "curves.h5").read_bytes())):
+                           ("archived curves.h5", (legacy / cell_dir / "curves.h5").read_bytes())):
         for label, at in zip(("root symbol-table message", "superblock's cached copy"), btree_addresses(original)):
             b = bytearray(original)
             b[at:at + 8] = b"\xff" * 8
@@ -242,7 +249,7 @@ def main():
                 cases.append((name, [calibrate, "--ensemble", str(f), "--out", str(out)], str(f), same))
             else:
                 d = tmp / f"btree_{k:03d}"
-                shutil.copytree(archived, d)
+                shutil.copytree(legacy, d)
                 (d / cell_dir / "curves.h5").write_bytes(bytes(b))
                 same = (lambda d=d: ensemble_values(d / "ensemble.h5") ==
                         ensemble_values(legacy_assembled / "ensemble.h5"))
