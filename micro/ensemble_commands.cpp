@@ -123,6 +123,64 @@ std::vector<std::size_t> selected_cells(const AnalysisEnsembleSettings& e, const
   return cells;
 }
 
+// --select FILE (run_commands.hpp): per size, the realizations drawn, with multiplicities.
+struct CellDraws {
+  std::vector<std::vector<std::size_t>> per_size;  // realization indices, in the file's order
+  std::string file;
+  std::string hash;  // of the draws alone (notes do not count), mixed into the ensemble's config hash
+};
+
+constexpr const char* kCellSelectionFormat = "uhpc-cell-selection/1";
+
+CellDraws read_cell_selection(const fs::path& file, const AnalysisEnsembleSettings& e) {
+  CellDraws d;
+  d.file = file.string();
+  const Config cfg = Config::load(d.file);
+  const std::string format = cfg.text("format");
+  if (format != kCellSelectionFormat)
+    cfg.fail("format", fmt::format("expected \"{}\", got \"{}\"", kCellSelectionFormat, format));
+  cfg.accept_any("notes");
+  const std::vector<Config> sizes = cfg.sections("sizes");
+  std::string listed;
+  for (std::size_t i = 0; i < e.sizes_m.size(); ++i) listed += fmt::format("{}{:g}", i ? ", " : "", e.sizes_m[i] * 1e3);
+  if (sizes.size() != e.sizes_m.size())
+    cfg.fail("sizes", fmt::format("has {} entries, the ensemble {} sizes ({} mm): one entry per size, in order",
+                                  sizes.size(), e.sizes_m.size(), listed));
+  nlohmann::json canonical = nlohmann::json::array();
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    const double size_m = sizes[i].number("cell_size_m", Range::positive());
+    if (std::abs(size_m - e.sizes_m[i]) > 1e-9 * e.sizes_m[i])
+      sizes[i].fail("cell_size_m", fmt::format("{:g} m is not the ensemble's size {} ({:g} m; sizes {} mm, in order)",
+                                               size_m, i, e.sizes_m[i], listed));
+    const std::vector<double> drawn =
+        sizes[i].numbers("realizations", Range::closed(0.0, static_cast<double>(e.realizations - 1)));
+    std::vector<std::size_t> r;
+    for (std::size_t k = 0; k < drawn.size(); ++k) {
+      if (drawn[k] != std::floor(drawn[k]))
+        sizes[i].fail("realizations", fmt::format("entry {} ({:g}) is not an integer", k, drawn[k]));
+      r.push_back(static_cast<std::size_t>(drawn[k]));
+    }
+    canonical.push_back({{"cell_size_m", e.sizes_m[i]}, {"realizations", r}});
+    d.per_size.push_back(std::move(r));
+  }
+  cfg.finish();
+  d.hash = fnv1a64_hex(canonical.dump());
+  return d;
+}
+
+// The combinations of --select and --assemble-to that make sense (bad input otherwise).
+void check_assemble_options(const EnsembleSelection& sel, const fs::path& out) {
+  if (sel.cell_selection && !sel.assemble_only)
+    throw InputError("--select: needs --assemble-only (a selection assembles finished cells, it analyses none)");
+  if (sel.cell_selection && !sel.assemble_to)
+    throw InputError("--select: needs --assemble-to DIR (a resampled ensemble must not replace " +
+                     (out / "ensemble.h5").string() + ")");
+  if (sel.assemble_to && !sel.assemble_only) throw InputError("--assemble-to: needs --assemble-only");
+  if (sel.assemble_to && sel.cell_selection && fs::weakly_canonical(*sel.assemble_to) == fs::weakly_canonical(out))
+    throw InputError("--assemble-to " + sel.assemble_to->string() +
+                     ": is the cells' directory --out; a resampled ensemble must not replace its ensemble.h5");
+}
+
 // Everything a run reads before it analyses anything (bad input fails here, at once).
 struct EnsembleInputs {
   AnalysisEnsembleSettings e;
@@ -267,14 +325,15 @@ struct SizeSummary {
   std::size_t ok = 0, failed = 0, incomplete = 0, suspect = 0, reloaded = 0;
 };
 
+// `draws`: the realizations averaged, each as often as listed (every realization once for the ensemble).
 SizeSummary summarize_size(const AnalysisEnsembleSettings& e, const std::vector<CellOutcome>& outcomes, std::size_t i,
-                           const fs::path& out) {
+                           const std::vector<std::size_t>& draws, const fs::path& out) {
   SizeSummary z;
   std::vector<const ResampledCurve*> used;
   std::vector<double> peaks, e50, E0, dissipated, walls;
   double bridging_max = 0.0;
   nlohmann::json failures = nlohmann::json::array(), suspects = nlohmann::json::array(), seeds = nlohmann::json::array();
-  for (std::size_t r = 0; r < e.realizations; ++r) {
+  for (std::size_t r : draws) {
     const CellOutcome& o = outcomes[i * e.realizations + r];
     const CellResult& res = o.result;
     seeds.push_back(o.job.seed);
@@ -311,11 +370,11 @@ SizeSummary summarize_size(const AnalysisEnsembleSettings& e, const std::vector<
     bridging_max = std::max(bridging_max, res.path.max_abs_difference);
   }
   z.curves = size_curves(e.sizes_m[i], e.post.grid, used);
-  z.ok = e.realizations - z.failed;
+  z.ok = draws.size() - z.failed;
   const auto or_null = [&](double v) { return used.empty() ? nlohmann::json(nullptr) : nlohmann::json(v); };
   z.json = {{"cell_size_m", e.sizes_m[i]},
             {"directory", size_label(e.sizes_m[i])},
-            {"cells", e.realizations},
+            {"cells", draws.size()},
             {"cells_ok", z.ok},
             {"cells_failed", z.failed},
             {"cells_incomplete", z.incomplete},
@@ -334,7 +393,7 @@ SizeSummary summarize_size(const AnalysisEnsembleSettings& e, const std::vector<
             {"failures", failures},
             {"suspects", suspects}};
   const Spread sp = spread(peaks), se = spread(e50);
-  std::printf("%8.2f %6zu %6zu %10zu %8zu %8zu %18.3f %12.3f +- %7.3f %20.4g\n", e.sizes_m[i] * 1e3, e.realizations,
+  std::printf("%8.2f %6zu %6zu %10zu %8zu %8zu %18.3f %12.3f +- %7.3f %20.4g\n", e.sizes_m[i] * 1e3, draws.size(),
               z.failed, z.incomplete, z.suspect, used.size(), z.curves.nominal_strength_Pa * 1e-6, sp.mean * 1e-6,
               sp.std * 1e-6, se.count ? se.mean : std::numeric_limits<double>::quiet_NaN());
   return z;
@@ -348,19 +407,41 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   const auto t0 = std::chrono::steady_clock::now();
   const EnsembleInputs in = read_inputs(config_path, overrides, factory);
   const AnalysisEnsembleSettings& e = in.e;
-  const std::size_t total = e.sizes_m.size() * e.realizations;
+  check_assemble_options(selection, out);
+  // The realizations averaged per size: each once, or a --select file's draws (with multiplicities).
+  std::optional<CellDraws> draws;
+  if (selection.cell_selection) draws = read_cell_selection(*selection.cell_selection, e);
+  std::vector<std::vector<std::size_t>> per_size_draws(e.sizes_m.size());
+  for (std::size_t i = 0; i < e.sizes_m.size(); ++i) {
+    if (draws) {
+      per_size_draws[i] = draws->per_size[i];
+    } else {
+      for (std::size_t r = 0; r < e.realizations; ++r) per_size_draws[i].push_back(r);
+    }
+  }
   // A partial run (--only-size, --only-cell) handles its cells alone and writes no ensemble file.
-  const std::vector<std::size_t> chosen = selected_cells(e, selection);
+  std::vector<std::size_t> chosen = selected_cells(e, selection);
+  if (draws) {  // only the cells drawn are reloaded (each once)
+    chosen.clear();
+    for (std::size_t i = 0; i < e.sizes_m.size(); ++i)
+      for (std::size_t r : per_size_draws[i]) chosen.push_back(i * e.realizations + r);
+    std::sort(chosen.begin(), chosen.end());
+    chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+  }
+  std::size_t total = 0;
+  for (const auto& d : per_size_draws) total += d.size();
   const bool partial = selection.only_size_mm.has_value() || selection.only_cell.has_value();
+  // Where ensemble.h5 and summary.json go: the cells' directory, or --assemble-to's.
+  const fs::path dest = selection.assemble_to.value_or(out);
   // A run over every cell (or --assemble-only) writes ensemble.h5 and summary.json: one such run at a time.
   // Runs of a part lock only their cells (below), so that batch jobs of one ensemble run side by side.
   OutputLock ensemble_lock;
-  if (!partial) ensemble_lock = lock_output_directory(out, "uhpc-micro ensemble");
+  if (!partial) ensemble_lock = lock_output_directory(dest, "uhpc-micro ensemble");
 
   // Every finished cell is reloaded before any solve starts, so the progress count and its ETA are the
   // solves' from the first line (the solves go largest first, and a resumed run's finished cells are
   // often the first realizations of every size).
-  std::vector<CellOutcome> outcomes(total);
+  std::vector<CellOutcome> outcomes(e.sizes_m.size() * e.realizations);
   std::size_t reloaded_cells = 0;
   double reloaded_work = 0, total_work = 0;
   std::vector<std::string> unfinished;
@@ -382,7 +463,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
     if (unfinished.size() > 5) list += ", ...";
     throw InputError(fmt::format("--assemble-only: {} of {} cells in {} are not finished with this configuration ({}): "
                                  "run them first (--only-cell, --only-size, or without --assemble-only)",
-                                 unfinished.size(), total, out.string(), list));
+                                 unfinished.size(), chosen.size(), out.string(), list));
   }
   ProgressOptions po;
   po.unit = "cells";
@@ -402,7 +483,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
       if (outcomes[k].result.response.status == CellStatus::Failed) ++failed;
     std::printf("%zu of %zu cells selected (%zu reloaded), %zu failed, in %.1f s; ensemble.h5 and summary.json are "
                 "written by a run over every cell (e.g. --assemble-only once all are finished)\n",
-                chosen.size(), total, reloaded_cells, failed, wall());
+                chosen.size(), e.sizes_m.size() * e.realizations, reloaded_cells, failed, wall());
     return kExitOk;
   }
 
@@ -413,7 +494,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   std::printf("%8s %6s %6s %10s %8s %8s %18s %22s %20s\n", "size_mm", "cells", "failed", "incomplete", "suspect",
               "averaged", "nominal_MPa", "peak_MPa mean +- std", "e(d=0.5) mean");
   for (std::size_t i = 0; i < e.sizes_m.size(); ++i) {
-    SizeSummary z = summarize_size(e, outcomes, i, out);
+    SizeSummary z = summarize_size(e, outcomes, i, per_size_draws[i], out);
     curves.push_back(std::move(z.curves));
     sizes.push_back(std::move(z.json));
     ok_total += z.ok;
@@ -424,9 +505,16 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
   }
   std::vector<double> skipped;
   const Ensemble ensemble = to_ensemble(e.post.grid, curves, &skipped);
-  const Provenance provenance =
-      Provenance::make("uhpc-micro ensemble", fnv1a64_hex(in.config_hash + in.per_size.front().config_hash), e.base_seed);
-  if (ensemble.size_count() > 0) write_ensemble(out / "ensemble.h5", ensemble, provenance);
+  const Provenance provenance = Provenance::make(
+      "uhpc-micro ensemble", fnv1a64_hex(in.config_hash + in.per_size.front().config_hash + (draws ? draws->hash : "")),
+      e.base_seed);
+  if (ensemble.size_count() > 0) write_ensemble(dest / "ensemble.h5", ensemble, provenance);
+  nlohmann::json selection_json = nullptr;
+  if (draws) {
+    selection_json = {{"file", draws->file}, {"hash", draws->hash}, {"cells_directory", out.string()}, {"sizes", {}}};
+    for (std::size_t i = 0; i < e.sizes_m.size(); ++i)
+      selection_json["sizes"].push_back({{"cell_size_m", e.sizes_m[i]}, {"realizations", per_size_draws[i]}});
+  }
   const double wall_s = wall();
   const nlohmann::json summary = {
       {"format", "uhpc-micro-ensemble/1"},
@@ -434,6 +522,7 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
       {"realizations", e.realizations},
       {"seed_rule", "derive_cell_seed(base_seed, size_index, realization): SplitMix64 chain, 53 bits"},
       {"cells", total},
+      {"cell_selection", selection_json},
       {"cells_ok", ok_total},
       {"cells_failed", failed_total},
       {"cells_incomplete", incomplete_total},
@@ -449,16 +538,16 @@ int run_ensemble_command(const std::string& config_path, const std::vector<std::
       {"wall_s", wall_s},
       {"peak_memory_MiB", peak_memory_MiB()},
       {"provenance", provenance.to_json()}};
-  write_text_atomic(out / "summary.json", summary.dump(2) + "\n");
+  write_text_atomic(dest / "summary.json", summary.dump(2) + "\n");
   std::printf("%zu cells (%zu reloaded), %zu failed, %zu incomplete, %zu suspect, in %.1f s\n", total, reloaded_total,
               failed_total, incomplete_total, suspect_total, wall_s);
-  if (failed_total > 0) spdlog::warn("{} cells failed: see {}", failed_total, (out / "summary.json").string());
+  if (failed_total > 0) spdlog::warn("{} cells failed: see {}", failed_total, (dest / "summary.json").string());
   if (!skipped.empty())
     throw NumericalError(fmt::format("{} of {} sizes have no cell to average ({}); see {}", skipped.size(),
                                      e.sizes_m.size(),
                                      ensemble.size_count() > 0 ? "ensemble.h5 holds the others" : "no ensemble.h5 written",
-                                     (out / "summary.json").string()));
-  spdlog::info("wrote {} and {}", (out / "ensemble.h5").string(), (out / "summary.json").string());
+                                     (dest / "summary.json").string()));
+  spdlog::info("wrote {} and {}", (dest / "ensemble.h5").string(), (dest / "summary.json").string());
   return kExitOk;
 }
 

@@ -14,7 +14,9 @@
 //   uhpc-micro ensemble --config data/micro_analysis_ensemble.json --out DIR [-j N] [--set key=value]...
 //       sizes x realizations, resumable: per cell as `run`, DIR/ensemble.h5 (uhpc-calibrate's input) and
 //       DIR/summary.json; [--only-size MM] [--only-cell I] analyse a part only (one batch job per cell or
-//       size), --assemble-only writes ensemble.h5 and summary.json from the finished cells
+//       size), --assemble-only writes ensemble.h5 and summary.json from the finished cells;
+//       --assemble-only --select FILE --assemble-to DIR: a resampled ensemble (listed cells, with
+//       multiplicities) into DIR
 //
 // --set microstructure.<key>=... overrides data/microstructure.json (Burr law, porosity, matrix);
 // for generate-ensemble, elastic, run and ensemble, --set cell.<key>=... overrides the cell config.
@@ -109,6 +111,17 @@ int main(int argc, char** argv) {
                  "cell is not finished)")
       ->excludes(only_size_opt)
       ->excludes(only_cell_opt);
+  // A resampled ensemble (a bootstrap sample of the cells, pipelines/uq_sdel.py): run_commands.hpp.
+  std::string select_file, assemble_to;
+  CLI::Option* select_opt = analyse->add_option(
+      "--select", select_file,
+      "with --assemble-only and --assemble-to: average, per size, the realizations this file lists, each as often as "
+      "listed (uhpc-cell-selection/1)");
+  select_opt->type_name("FILE");
+  CLI::Option* assemble_to_opt = analyse->add_option(
+      "--assemble-to", assemble_to,
+      "with --assemble-only: write ensemble.h5 and summary.json to DIR instead of --out (the cells are read from --out)");
+  assemble_to_opt->type_name("DIR");
 
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);
@@ -120,6 +133,8 @@ int main(int argc, char** argv) {
     if (analyse->parsed()) {
       if (only_size_opt->count() > 0) selection.only_size_mm = only_size_mm;
       if (only_cell_opt->count() > 0) selection.only_cell = only_cell;
+      if (select_opt->count() > 0) selection.cell_selection = select_file;
+      if (assemble_to_opt->count() > 0) selection.assemble_to = assemble_to;
       return uhpc::micro::run_ensemble_command(config_path, overrides, out, jobs,
                                                uhpc::micro::fracture_analyzer_factory(), selection);
     }

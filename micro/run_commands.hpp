@@ -59,10 +59,26 @@ int run_cell_command(const std::string& config_path, const std::vector<std::stri
 // finished on disk (failed cells count as failed, whatever retry_failed says), and ensemble.h5 and
 // summary.json are written from them. A size or index outside the ensemble, a selection with
 // assemble_only, or assemble_only with unfinished cells is bad input (exit 2).
+//
+// A cell selection (cell_selection, with assemble_only and assemble_to) assembles a resampled ensemble,
+// e.g. one bootstrap sample (pipelines/uq_sdel.py, docs/uq-sdel.md): the file lists, per size, the
+// realizations averaged, each as often as it is listed (with multiplicities), and ensemble.h5 and
+// summary.json go to assemble_to instead of DIR (the cells are reloaded from DIR as --assemble-only
+// reloads them, each locked while it is read; the full ensemble's files there are left alone). The averaging is the full ensemble's, draw by draw: a failed, suspect or
+// incomplete cell drawn k times counts k times as such and is left out of the mean. Format
+// ("uhpc-cell-selection/1", every key required but notes):
+//   {"format": "uhpc-cell-selection/1", "notes": "...",
+//    "sizes": [{"cell_size_m": 0.003, "realizations": [4, 4, 17, ...]}, ...]}
+// with one entry per size of the config, in its order, each listing at least one realization in
+// [0, realizations). Only the cells drawn must be finished. Bad input (exit 2, naming the file and key):
+// a missing or unreadable file, another format, a size missing, extra or out of order, a realization out
+// of range or not an integer, an unknown key; a selection without assemble_only or assemble_to.
 struct EnsembleSelection {
   std::optional<double> only_size_mm;
   std::optional<long long> only_cell;
   bool assemble_only = false;
+  std::optional<std::filesystem::path> cell_selection;  // --select FILE
+  std::optional<std::filesystem::path> assemble_to;     // --assemble-to DIR
 };
 
 int run_ensemble_command(const std::string& config_path, const std::vector<std::string>& overrides,

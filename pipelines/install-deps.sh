@@ -36,6 +36,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # figures (Debian's python3, /usr/bin/python3)
   python3 python3-matplotlib python3-numpy python3-h5py
+  # uncertainty quantification: distributions, bootstrap draws (make -C pipelines uq-sdel)
+  python3-openturns
 )
 if [ "$with_lammps" -eq 1 ]; then
   # the speed peer of the macro benchmark: lmp, and mpirun for its 2-process run

@@ -118,3 +118,12 @@ add_test(NAME regression.calibrate_fit_failure
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/expect_failure.cmake
          WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
 set_tests_properties(regression.calibrate_fit_failure PROPERTIES LABELS regression FIXTURES_REQUIRED cal_bad_valid)
+
+# --- the SDEL's uncertainty (pipelines/uq_sdel.py, issue 51): 4 realizations of each size of the archived
+#     cells, 3 bootstrap and 3 covariance samples; files, provenance, the assembly with multiplicities,
+#     the summary, resume and refusal (about 20 s) ---
+add_test(NAME regression.uq_sdel_tiny
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/check_uq_sdel.py --micro $<TARGET_FILE:uhpc-micro>
+                 --calibrate $<TARGET_FILE:uhpc-calibrate> --sdel-program $<TARGET_FILE:uhpc-sdel>
+                 --source ${PROJECT_SOURCE_DIR} --out ${UHPC_REGRESSION_OUT}/uq_sdel_tiny)
+set_tests_properties(regression.uq_sdel_tiny PROPERTIES LABELS regression TIMEOUT 180)

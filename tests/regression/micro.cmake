@@ -108,3 +108,17 @@ uhpc_bad_input_case(NAME micro_elastic_needs_mesh
 uhpc_bad_input_case(NAME micro_elastic_support_too_small
   STDERR "error: data/micro_elastic.json: key 'rk.support_factor': value 0.5 is out of range, must be in [1, 4]"
   COMMAND ${_micro} elastic --config data/micro_elastic.json --set rk.support_factor=0.5 --out ${_bad})
+
+# --- uhpc-micro ensemble --select (a resampled ensemble, docs/uq-sdel.md): read before any cell ---
+uhpc_bad_input_case(NAME micro_ensemble_select_out_of_range
+  STDERR "error: tests/regression/micro_cell_selection/out_of_range.json: key 'sizes[0].realizations[1]': value 25 is out of range, must be in [0, 24]"
+  COMMAND ${_micro} ensemble --config data/micro_analysis_ensemble.json --assemble-only
+          --select tests/regression/micro_cell_selection/out_of_range.json --assemble-to ${_bad}/select --out ${_bad})
+uhpc_bad_input_case(NAME micro_ensemble_select_size_missing
+  STDERR "error: tests/regression/micro_cell_selection/size_missing.json: key 'sizes': has 3 entries, the ensemble 4 sizes (3, 4.5, 5, 6.5 mm): one entry per size, in order"
+  COMMAND ${_micro} ensemble --config data/micro_analysis_ensemble.json --assemble-only
+          --select tests/regression/micro_cell_selection/size_missing.json --assemble-to ${_bad}/select --out ${_bad})
+uhpc_bad_input_case(NAME micro_ensemble_select_without_assemble_to
+  STDERR "error: --select: needs --assemble-to DIR (a resampled ensemble must not replace ${_bad}/ensemble.h5)"
+  COMMAND ${_micro} ensemble --config data/micro_analysis_ensemble.json --assemble-only
+          --select tests/regression/micro_cell_selection/size_missing.json --out ${_bad})
