@@ -37,6 +37,8 @@ import subprocess
 import sys
 import time
 
+from ensemble_cells import sizes_and_realizations
+
 CONSTANTS = ("a", "A", "nu", "chi")
 SOURCES = ("bootstrap", "covariance")
 SELECTION_FORMAT = "uhpc-cell-selection/1"
@@ -89,17 +91,10 @@ def run(cmd, launch, log):
 def ensemble_sizes(micro_config, micro_set):
     """The config's cell sizes and realizations (with the --set overrides of those two keys)."""
     cfg = read_json(micro_config, "the microcell ensemble config")
-    sizes, realizations = cfg.get("cell_sizes_m"), cfg.get("realizations")
-    args = shlex.split(micro_set)
-    for i, a in enumerate(args):
-        kv = args[i + 1] if a == "--set" and i + 1 < len(args) else (a[6:] if a.startswith("--set=") else None)
-        if kv is None or "=" not in kv:
-            continue
-        k, v = kv.split("=", 1)
-        if k == "cell_sizes_m":
-            sizes = json.loads(v)
-        elif k == "realizations":
-            realizations = int(v)
+    try:
+        sizes, realizations = sizes_and_realizations(cfg, shlex.split(micro_set))
+    except ValueError as e:
+        raise BadInput(f"{micro_config}: an override of 'cell_sizes_m' or 'realizations' does not read: {e}")
     if not isinstance(sizes, list) or not sizes or not isinstance(realizations, int) or realizations < 1:
         raise BadInput(f"{micro_config}: keys 'cell_sizes_m' and 'realizations': expected a list of sizes and a "
                        f"positive count")
