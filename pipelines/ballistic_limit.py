@@ -9,7 +9,7 @@ usage: ballistic_limit.py --macro UHPC_MACRO --config CASE.json [--sdel SDEL.jso
 Each run is uhpc-macro at one velocity (rounded to 1 m/s) in DIR/v<velocity>/. A run whose result.json
 exists is read, not rerun, so an interrupted bisection resumes, but only if it was made from the same
 inputs: its provenance.config_hash must equal `uhpc-macro ... --inputs-hash` of the run this bisection
-would make (the case with every --set, the end time and the files read); otherwise the bisection stops
+(either line: today's hash or the former scheme's, which hashed the case's notes too) would make (the case with every --set, the end time and the files read); otherwise the bisection stops
 (exit 2) naming the run, rather than mix runs of another case. A run still undecided at its end time is
 carried on from its checkpoint (uhpc-macro --restart) to twice that end time, and so on up to
 --max-end-time (default: --end-time, no extension), so that runs near the limit are decided by what the
