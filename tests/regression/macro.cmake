@@ -125,3 +125,9 @@ add_test(NAME regression.pipelines_sweep_thickness_report
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/check_sweep_pipeline.py --source ${PROJECT_SOURCE_DIR}
                  --build ${CMAKE_BINARY_DIR} --out ${UHPC_REGRESSION_OUT}/pipelines_sweep)
 set_tests_properties(regression.pipelines_sweep_thickness_report PROPERTIES LABELS regression TIMEOUT 300)
+# The band of the residual velocity over SDEL samples (make uq, issue 51): the coarse disc, 4 covariance
+# samples, 2 velocities; files, provenance, the band's order, resume (about 30 s).
+add_test(NAME regression.pipelines_uq_band
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/check_uq_band.py --source ${PROJECT_SOURCE_DIR}
+                 --build ${CMAKE_BINARY_DIR} --out ${UHPC_REGRESSION_OUT}/pipelines_uq_band)
+set_tests_properties(regression.pipelines_uq_band PROPERTIES LABELS regression TIMEOUT 300)
