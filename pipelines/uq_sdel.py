@@ -26,7 +26,7 @@ plan is kept (resumable); one made from other inputs stops the run (exit 2: use 
 DIR/summary.json and DIR/summary.md: per constant the base value and standard error, the samples' mean,
 standard deviation, 5 % and 95 % quantiles and the std over the standard error; the samples' correlations
 (Pearson and Spearman). Exit codes: 0; 1 a sample's fit failed (recorded, the others are written); 2 bad
-input. Method: docs/uq-sdel.md.
+input. Method: docs/uncertainty.md.
 """
 import argparse
 import hashlib

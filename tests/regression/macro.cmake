@@ -131,3 +131,9 @@ add_test(NAME regression.pipelines_uq_band
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/check_uq_band.py --source ${PROJECT_SOURCE_DIR}
                  --build ${CMAKE_BINARY_DIR} --out ${UHPC_REGRESSION_OUT}/pipelines_uq_band)
 set_tests_properties(regression.pipelines_uq_band PROPERTIES LABELS regression TIMEOUT 300)
+# Sobol indices through a chaos surrogate (make sensitivity, issue 51): the coarse disc, 16 design points at
+# 1112 m/s; files, each run's constants, the indices' bounds, resume (about 30 s).
+add_test(NAME regression.pipelines_sensitivity
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/check_sensitivity.py --source ${PROJECT_SOURCE_DIR}
+                 --build ${CMAKE_BINARY_DIR} --out ${UHPC_REGRESSION_OUT}/pipelines_sensitivity)
+set_tests_properties(regression.pipelines_sensitivity PROPERTIES LABELS regression TIMEOUT 300)

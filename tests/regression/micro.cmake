@@ -109,7 +109,7 @@ uhpc_bad_input_case(NAME micro_elastic_support_too_small
   STDERR "error: data/micro_elastic.json: key 'rk.support_factor': value 0.5 is out of range, must be in [1, 4]"
   COMMAND ${_micro} elastic --config data/micro_elastic.json --set rk.support_factor=0.5 --out ${_bad})
 
-# --- uhpc-micro ensemble --select (a resampled ensemble, docs/uq-sdel.md): read before any cell ---
+# --- uhpc-micro ensemble --select (a resampled ensemble, docs/uncertainty.md): read before any cell ---
 uhpc_bad_input_case(NAME micro_ensemble_select_out_of_range
   STDERR "error: tests/regression/micro_cell_selection/out_of_range.json: key 'sizes[0].realizations[1]': value 25 is out of range, must be in [0, 24]"
   COMMAND ${_micro} ensemble --config data/micro_analysis_ensemble.json --assemble-only
