@@ -9,7 +9,8 @@ page, so the folder is self-contained). Sections, each shown when its files exis
 (OUT/calibrate/: fit_report.json, figures), the seven shots (OUT/shots/comparison.md, lambert_jonas.md),
 the shots at measured thickness, the velocity sweeps (OUT/sweep/t*/sweep.{md,png}), the ballistic limit
 (OUT/ballistic_limit/ballistic_limit.md), the thickness study (OUT/thickness/thickness.{md,png}), every
-ballistic-limit estimate side by side with its method, the runs' warnings, and the provenance of every uhpc-macro run under OUT (result.json: program version, commit, config hash, the files
+ballistic-limit estimate side by side with its method, the uncertainty (OUT/uq_sdel/*/summary.md,
+OUT/uq/*/uq_band.md, OUT/sensitivity/sensitivity.md), the runs' warnings, and the provenance of every uhpc-macro run under OUT (result.json: program version, commit, config hash, the files
 read with their hashes, the overrides). Each study says the case, SDEL, spacing and particle count of its
 runs, and one coarser than the paper's 3.0 mm core is marked as a demonstration.
 """
@@ -118,7 +119,8 @@ def study_label(run_dirs):
     if not cases:
         return ""
     join = lambda xs: ", ".join(f"`{x}`" for x in sorted(xs))
-    line = (f"Case {join(cases)}" + (f", SDEL {join(sdels)}" if sdels else "")
+    sdel_text = join(sdels) if len(sdels) <= 3 else f"{len(sdels)} handoffs (`{min(sdels)}` ... `{max(sdels)}`)"
+    line = (f"Case {join(cases)}" + (f", SDEL {sdel_text}" if sdels else "")
             + (f"; axis spacing {', '.join(f'{1e3 * h:.2f}' for h in sorted(spacings))} mm" if spacings else "")
             + f"; {', '.join(str(c) for c in sorted(c for c in counts if c is not None))} particles.")
     if spacings and max(spacings) > PAPER_AXIS_SPACING_M * 1.001:
@@ -307,6 +309,25 @@ def main():
         p.add("", "| study | method | v_bl m/s | interval | runs | notes |", "|---|---|---|---|---|---|", *estimates)
     else:
         p.add("", "No ballistic-limit estimate under the folder.")
+
+    p.add("", "## Uncertainty", "",
+          "From the microcells' scatter and the calibration to the residual velocity (docs/uncertainty.md): the SDEL "
+          "constants' spread over their samples, the band of the residual velocity over the shots run with each "
+          "sample, and the Sobol indices of a surrogate checked on runs it did not see.")
+    # (what, its pages, the glob of its runs under a page's folder, the command that makes it)
+    uq_parts = [("SDEL samples", sorted(root.glob("uq_sdel/*/summary.md")), None, "make -C pipelines uq-sdel"),
+                ("the band of the residual velocity", sorted(root.glob("uq/*/uq_band.md")), "s*/v*",
+                 "make -C pipelines uq"),
+                ("Sobol indices", sorted(root.glob("sensitivity/sensitivity.md")), "points/k*/v*",
+                 "make -C pipelines sensitivity")]
+    for what, found, runs, command in uq_parts:
+        for md in found:
+            p.add("", f"### {what[0].upper() + what[1:]} (`{rel(md.parent, root)}`)")
+            if runs:
+                p.add("", study_label(sorted(md.parent.glob(runs))))
+            p.include(md)
+        if not found:
+            p.not_run(what, command)
 
     p.add("", "## The panel after each run", "",
           "What a test engineer measures (result.json `panel`, macro/README.md): the front crater's and the rear "
