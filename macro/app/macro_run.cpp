@@ -162,7 +162,8 @@ void refuse_beyond_size_budget(const Config& cfg, const CaseSettings& settings) 
                                      settings.run.max_particles));
 }
 
-// --reuse: true when `result` holds a finished run of the inputs whose hash is `hash`; false when there is
+// --reuse: true when `result` holds a finished run of these inputs (their hash, or their hash in the former
+// scheme that hashed the case's notes too, for a run recorded before 2026-12-06); false when there is
 // none (the run goes ahead); an InputError when it holds a run of other inputs (a make rule would
 // otherwise take an answer made with another end time, SDEL or --set for this one).
 bool reuse_finished_run(const fs::path& result, const RunInputs& inputs) {
