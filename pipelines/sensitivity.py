@@ -26,9 +26,12 @@ DIR/sensitivity.{json,md}. A Q2 below 0.8 is flagged: the indices of a surrogate
 are not to be read.
 """
 import argparse
+import hashlib
 import json
 import pathlib
 import sys
+
+from uq_inputs import BadInput, import_openturns, read_json
 
 # (name, where, key, what): the constants the issue names as least certain. "afc" keys are those of the
 # AFC constants file (SI units); "sdel" keys those of the handoff's "constants".
@@ -45,19 +48,6 @@ INPUTS = [
     ("chi", "sdel", "chi", "SDEL: the damage rate"),
 ]
 Q2_TRUSTED = 0.8
-
-
-class BadInput(Exception):
-    pass
-
-
-def read_json(path, what):
-    try:
-        return json.loads(pathlib.Path(path).read_text())
-    except FileNotFoundError:
-        raise BadInput(f"{path}: no such file ({what})")
-    except (OSError, ValueError) as e:
-        raise BadInput(f"{path}: not readable JSON ({what}): {e}")
 
 
 def shipped_values(afc, sdel):
@@ -100,7 +90,7 @@ def write_if_new(path, obj):
 
 
 def design(args):
-    import openturns as ot  # noqa: PLC0415 (the analysis imports it too; a clear error if missing is ot's)
+    ot = import_openturns()
     afc, sdel = read_json(args.afc, "the AFC constants file"), read_json(args.sdel, "the SDEL handoff")
     centre = shipped_values(afc, sdel)
     if not 0 < args.range < 1:
@@ -114,7 +104,6 @@ def design(args):
             "range": args.range, "seed": args.seed, "samples": args.samples,
             "inputs": [{"name": n, "file": w, "key": k, "what": t, "shipped": c, "low": (1 - args.range) * c,
                         "high": (1 + args.range) * c} for (n, w, k, t), c in zip(INPUTS, centre)]}
-    import hashlib  # noqa: PLC0415
     plan_hash = hashlib.sha256(json.dumps(plan, sort_keys=True).encode()).hexdigest()[:16]
     plan["plan_hash"] = plan_hash
     plan["points"] = [list(p) for p in points]
@@ -135,7 +124,7 @@ def fit_and_indices(x, y, names, lows, highs, degree, validation):
     """Polynomial chaos of total degree `degree` in the design's laws (independent uniforms on [lows, highs]:
     the indices are variances under these laws, so they must be the design's, not the points' extremes),
     fitted to the first rows and validated on the last `validation` share: (Q2, first-order, total)."""
-    import openturns as ot  # noqa: PLC0415
+    ot = import_openturns()
     x, y = [list(map(float, r)) for r in x], [[float(v)] for v in y]
     d, n = len(names), len(x)
     n_fit = n - max(int(round(validation * n)), 1)

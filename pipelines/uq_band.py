@@ -30,28 +30,16 @@ import sys
 import numpy as np
 
 import lambert_jonas
+from uq_inputs import BadInput, import_openturns, read_json
 
 QUANTILES = (0.05, 0.5, 0.95)
 
 
-class BadInput(Exception):
-    pass
-
-
 def quantiles(values):
     """5 %, 50 %, 95 % of `values` (OpenTURNS' empirical quantile of a one-dimensional sample)."""
-    import openturns as ot  # noqa: PLC0415 (imported where used: the module loads without it)
+    ot = import_openturns()
     sample = ot.Sample([[float(x)] for x in values])
     return [float(sample.computeQuantilePerComponent(q)[0]) for q in QUANTILES]
-
-
-def read_json(path):
-    try:
-        return json.loads(pathlib.Path(path).read_text())
-    except FileNotFoundError:
-        raise BadInput(f"{path}: no such file")
-    except (OSError, ValueError) as e:
-        raise BadInput(f"{path}: not readable JSON: {e}")
 
 
 def residual_by_velocity(path):
@@ -88,7 +76,7 @@ def collect(runs_dir, sdel_dir):
                "sdel_sha256": hashlib.sha256(sdel.read_bytes()).hexdigest()[:16], "runs": []}
         for v in velocities:
             result = s / f"v{v:g}" / "result.json"
-            r = read_json(result)
+            r = read_json(result, f"sample {s.name}'s run at {v:g} m/s")
             perforated = r.get("outcome") == "perforated"
             row["runs"].append({"velocity_m_s": v, "outcome": r.get("outcome"),
                                 "residual_velocity_m_s": float(r["residual_velocity_m_s"]) if perforated else 0.0,
@@ -164,11 +152,11 @@ def main():
         velocities, table = collect(args.runs, args.sdels)
         experiments = residual_by_velocity(args.experiments) if args.experiments else {}
         paper = residual_by_velocity(args.paper) if args.paper else {}
+        vr, bands, convergence = band(velocities, table, args.stable_to)
+        per_sample, fit_summary = fits(velocities, vr)
     except (BadInput, KeyError) as e:
         print(f"uq_band.py: {e}", file=sys.stderr)
         return 2
-    vr, bands, convergence = band(velocities, table, args.stable_to)
-    per_sample, fit_summary = fits(velocities, vr)
     for row, f in zip(table, per_sample):
         row["lambert_jonas_p1"] = f
     out = pathlib.Path(args.out)

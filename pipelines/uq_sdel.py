@@ -38,6 +38,7 @@ import sys
 import time
 
 from ensemble_cells import sizes_and_realizations
+from uq_inputs import BadInput, import_openturns, read_json
 
 CONSTANTS = ("a", "A", "nu", "chi")
 SOURCES = ("bootstrap", "covariance")
@@ -45,30 +46,9 @@ SELECTION_FORMAT = "uhpc-cell-selection/1"
 SUMMARY_FORMAT = "uhpc-uq-sdel/1"
 
 
-class BadInput(Exception):
-    pass
-
-
-def import_openturns():
-    try:
-        import openturns as ot  # noqa: PLC0415 (a clear message when it is missing)
-    except ImportError as e:
-        raise BadInput(f"OpenTURNS is not installed ({e}): bash pipelines/install-deps.sh (python3-openturns)")
-    return ot
-
 
 def digest(obj):
     return hashlib.sha256(json.dumps(obj, sort_keys=True).encode()).hexdigest()[:16]
-
-
-def read_json(path, what):
-    try:
-        with open(path) as f:
-            return json.load(f)
-    except FileNotFoundError:
-        raise BadInput(f"{path}: no such file ({what})")
-    except (OSError, json.JSONDecodeError) as e:
-        raise BadInput(f"{path}: not readable JSON ({what}): {e}")
 
 
 def write_json(path, obj):
