@@ -8,41 +8,20 @@ the indices of every input within [0, 1], first-order <= total; a second `make s
 
 usage: check_sensitivity.py --source SRC --build BUILD --out DIR
 """
-import argparse
 import json
-import os
-import pathlib
-import shutil
 import subprocess
-import sys
 
-ap = argparse.ArgumentParser()
-ap.add_argument("--source", required=True)
-ap.add_argument("--build", required=True)
-ap.add_argument("--out", required=True)
-args = ap.parse_args()
-src, out = pathlib.Path(args.source), pathlib.Path(args.out)
-shutil.rmtree(out, ignore_errors=True)
-failures = []
+from make_target_case import ENV, Checks, make_command, start
 
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
-
-
-make = ["make", "-C", str(src / "pipelines"), "--no-print-directory", "-o", "macro-tools", f"BUILD={args.build}",
-        f"OUT={out}", f"SHOT_CASE={src}/data/macro_disc_afc_coarse.json", "SENS_SAMPLES=16", "SENS_VELOCITIES=1112",
-        "JOBS=2"]
-env = dict(os.environ, OMP_NUM_THREADS="1")
-done = subprocess.run(make + ["-j2", "sensitivity"], env=env)
+src, build, out = start()
+check = Checks()
+make = make_command(src, build, out, "SENS_SAMPLES=16", "SENS_VELOCITIES=1112")
+done = subprocess.run(make + ["-j2", "sensitivity"], env=ENV)
 check(done.returncode == 0, "make sensitivity exits 0")
 root = out / "sensitivity"
 results = sorted(root.glob("points/k*/v1112/result.json"))
 check(len(results) == 16, f"16 runs: {len(results)}")
-if failures:
-    sys.exit(1)
+check.exit_if_failed()
 plan = json.loads((root / "design.json").read_text())
 names = [i["name"] for i in plan["inputs"]]
 for k, path in enumerate(results):
@@ -59,7 +38,7 @@ check(all(0.0 <= v["first_order"][n] <= v["total"][n] + 1e-9 <= 1.0 + 1e-9 for n
       "every input's indices within [0, 1], first-order <= total")
 check((root / "sensitivity.md").is_file(), "sensitivity.md written")
 stamps = {p: p.stat().st_mtime_ns for p in results}
-done = subprocess.run(make + ["sensitivity"], env=env, capture_output=True, text=True)
+done = subprocess.run(make + ["sensitivity"], env=ENV, capture_output=True, text=True)
 check(done.returncode == 0 and all(p.stat().st_mtime_ns == t for p, t in stamps.items()),
       "a second make sensitivity keeps every run")
-sys.exit(1 if failures else 0)
+check.exit()

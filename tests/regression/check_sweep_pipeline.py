@@ -12,47 +12,30 @@ and inside its bootstrap interval; a second `make sweep` runs nothing; the thick
 sweep's runs; the report page links only figures that exist, shows each run's provenance and the SDEL
 fitted to the stored microcell ensemble (constants with standard errors beside Table 4, fit per size).
 """
-import argparse
 import csv
 import json
-import os
 import pathlib
 import shutil
 import subprocess
-import sys
 
-FAILURES = []
+from make_target_case import ENV, Checks, make_command, start
 
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what)
-    if not cond:
-        FAILURES.append(what)
+check = Checks()
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--source", required=True)
-    ap.add_argument("--build", required=True)
-    ap.add_argument("--out", required=True)
-    args = ap.parse_args()
-    src, out = pathlib.Path(args.source), pathlib.Path(args.out)
-    shutil.rmtree(out, ignore_errors=True)
-    make = ["make", "-C", str(src / "pipelines"), "--no-print-directory", "-o", "macro-tools",  # built by ctest's build
-            f"BUILD={args.build}", f"OUT={out}", f"SHOT_CASE={src}/data/macro_disc_afc_coarse.json",
-            "SHOT_SET=--set run.end_time_s=4e-4", "VELOCITIES=689 900 1112", "THICKNESS=0.03175",
-            "THICKNESSES=0.025 0.03175", "TS_VELOCITIES=689 1112", "BOOTSTRAP=200", "JOBS=2"]
-    env = dict(os.environ, OMP_NUM_THREADS="1")
-    done = subprocess.run(make + ["-j2", "sweep", "thickness-study"], env=env)
+    src, build, out = start()
+    make = make_command(src, build, out, "SHOT_SET=--set run.end_time_s=4e-4", "VELOCITIES=689 900 1112",
+                        "THICKNESS=0.03175", "THICKNESSES=0.025 0.03175", "TS_VELOCITIES=689 1112", "BOOTSTRAP=200")
+    done = subprocess.run(make + ["-j2", "sweep", "thickness-study"], env=ENV)
     check(done.returncode == 0, "make sweep thickness-study exits 0")
-    if done.returncode:
-        sys.exit(1)
+    check.exit_if_failed()
     # A calibration beside the runs (the stored ensemble, a fraction of a second) for the report's section.
-    done = subprocess.run([str(pathlib.Path(args.build) / "calibrate" / "uhpc-calibrate"), "--ensemble",
+    done = subprocess.run([str(pathlib.Path(build) / "calibrate" / "uhpc-calibrate"), "--ensemble",
                            str(src / "data" / "micro_analysis_ensemble_cells" / "ensemble_4x10.h5"),
-                           "--out", str(out / "calibrate" / "sdel.json")], env=env)
+                           "--out", str(out / "calibrate" / "sdel.json")], env=ENV)
     check(done.returncode == 0, "uhpc-calibrate on the stored ensemble exits 0")
-    done = subprocess.run(make + ["report"], env=env)
+    done = subprocess.run(make + ["report"], env=ENV)
     check(done.returncode == 0, "make report exits 0")
 
     sweep = out / "sweep" / "t0.03175"
@@ -104,7 +87,7 @@ def main():
     # files untouched) and refuses one made from other inputs (exit 2, naming it) without touching it.
     runs = sorted(sweep.glob("v*/result.json"))
     before = {r: (r.read_bytes(), (r.parent / "history.csv").stat().st_mtime_ns) for r in runs}
-    again = subprocess.run(make + ["sweep"], env=env, capture_output=True, text=True)
+    again = subprocess.run(make + ["sweep"], env=ENV, capture_output=True, text=True)
     check(again.returncode == 0 and all((r.read_bytes(), (r.parent / "history.csv").stat().st_mtime_ns) == before[r]
                                         for r in runs), f"a second make sweep keeps its {len(runs)} runs untouched")
     # Through a launcher (as Slurm's srun), a finished shot is recognised before the launcher
@@ -112,18 +95,18 @@ def main():
     launcher = out / "launcher.sh"
     launcher.write_text(f"#!/bin/sh\necho \"$*\" >> {out / 'launches.txt'}\nexec \"$@\"\n")
     launcher.chmod(0o755)
-    through = subprocess.run(make + ["sweep", f"LAUNCH={launcher}"], env=env, capture_output=True, text=True)
+    through = subprocess.run(make + ["sweep", f"LAUNCH={launcher}"], env=ENV, capture_output=True, text=True)
     check(through.returncode == 0 and not (out / "launches.txt").exists()
           and all(r.read_bytes() == before[r][0] for r in runs), "through a launcher, the kept runs launch nothing")
     shutil.rmtree(sweep / "v900")
-    through = subprocess.run(make + ["sweep", f"LAUNCH={launcher}"], env=env, capture_output=True, text=True)
+    through = subprocess.run(make + ["sweep", f"LAUNCH={launcher}"], env=ENV, capture_output=True, text=True)
     launched = (out / "launches.txt").read_text().splitlines() if (out / "launches.txt").exists() else []
     check(through.returncode == 0 and len(launched) == 1 and "projectile.velocity_m_s=900" in launched[0]
           and (sweep / "v900" / "result.json").is_file(), f"through a launcher, only the missing run is launched: {launched}")
     runs = sorted(sweep.glob("v*/result.json"))
     before = {r: (r.read_bytes(), (r.parent / "history.csv").stat().st_mtime_ns) for r in runs}
     other = [a if not a.startswith("SHOT_SET=") else "SHOT_SET=--set run.end_time_s=5e-4" for a in make]
-    refused = subprocess.run(other + ["sweep"], env=env, capture_output=True, text=True)
+    refused = subprocess.run(other + ["sweep"], env=ENV, capture_output=True, text=True)
     check(refused.returncode != 0 and "made from other inputs" in refused.stderr
           and all(r.read_bytes() == before[r][0] for r in runs),
           "make sweep with another SHOT_SET stops, naming a run made from other inputs, and changes nothing")
@@ -184,9 +167,7 @@ def main():
     for run_dir in list(sweep.glob("v*")) + list((out / "sweep" / "t0.025").glob("v*")):
         res = json.loads((run_dir / "result.json").read_text())
         check(res["provenance"]["config_hash"] in page, f"{run_dir.name}: config hash in the provenance")
-    if FAILURES:
-        print(f"{len(FAILURES)} check(s) failed")
-        sys.exit(1)
+    check.exit_if_failed()
     print("all checks passed")
 
 

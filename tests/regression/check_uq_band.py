@@ -9,44 +9,24 @@ the convergence block is there; a second `make uq` runs no shot (every run kept)
 
 usage: check_uq_band.py --source SRC --build BUILD --out DIR
 """
-import argparse
 import hashlib
 import json
-import os
 import pathlib
-import shutil
 import subprocess
-import sys
 
-ap = argparse.ArgumentParser()
-ap.add_argument("--source", required=True)
-ap.add_argument("--build", required=True)
-ap.add_argument("--out", required=True)
-args = ap.parse_args()
-src, out = pathlib.Path(args.source), pathlib.Path(args.out)
-shutil.rmtree(out, ignore_errors=True)
-failures = []
+from make_target_case import ENV, Checks, make_command, start
 
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
-
-
-make = ["make", "-C", str(src / "pipelines"), "--no-print-directory", "-o", "macro-tools", "-o", "uq-tools",
-        f"BUILD={args.build}", f"OUT={out}", f"SHOT_CASE={src}/data/macro_disc_afc_coarse.json",
-        "UQ_SOURCE=covariance", "UQ_SAMPLES=4", "UQ_VELOCITIES=817 1112", "JOBS=2"]
-env = dict(os.environ, OMP_NUM_THREADS="1")
-done = subprocess.run(make + ["-j2", "uq"], env=env)
+src, build, out = start()
+check = Checks()
+make = make_command(src, build, out, "UQ_SOURCE=covariance", "UQ_SAMPLES=4", "UQ_VELOCITIES=817 1112")
+done = subprocess.run(make + ["-j2", "uq"], env=ENV)
 check(done.returncode == 0, "make uq exits 0")
 runs = out / "uq" / "covariance"
 results = sorted(runs.glob("s*/v*/result.json"))
 check(len(results) == 8, f"8 runs (4 samples x 2 velocities): {len(results)}")
 band_file = runs / "uq_band.json"
 check(band_file.is_file() and (runs / "uq_band.md").is_file(), "uq_band.json and uq_band.md written")
-if failures:
-    sys.exit(1)
+check.exit_if_failed()
 
 band = json.loads(band_file.read_text())
 check(band["format"] == "uhpc-uq-band/1" and band["source"] == "covariance", "format and source")
@@ -74,7 +54,7 @@ check(band["lambert_jonas_p1"]["a"]["q05"] <= band["lambert_jonas_p1"]["a"]["q95
 
 # Resumable: a second make uq keeps every run (uhpc-macro --reuse) and runs no shot.
 stamps = {p: p.stat().st_mtime_ns for p in results}
-done = subprocess.run(make + ["uq"], env=env, capture_output=True, text=True)
+done = subprocess.run(make + ["uq"], env=ENV, capture_output=True, text=True)
 check(done.returncode == 0, "a second make uq exits 0")
 check(all(p.stat().st_mtime_ns == t for p, t in stamps.items()), "it kept every run")
-sys.exit(1 if failures else 0)
+check.exit()
