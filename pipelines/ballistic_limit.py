@@ -3,18 +3,17 @@
 that does not perforate and the lowest that does, bracketed to a stated width.
 
 usage: ballistic_limit.py --macro UHPC_MACRO --config CASE.json [--sdel SDEL.json] [--set key=value ...]
-                          --low V_LOW --high V_HIGH [--width 10] [--end-time 1e-3] [--max-end-time T]
+                          --low V_LOW --high V_HIGH [--width 10] [--end-time T] [--max-end-time T]
                           [--launch PREFIX] --out DIR
 
-Each run is uhpc-macro at one velocity (rounded to 1 m/s) in DIR/v<velocity>/. A run whose result.json
-exists is read, not rerun, so an interrupted bisection resumes, but only if it was made from the same
-inputs: its provenance.config_hash must equal `uhpc-macro ... --inputs-hash` of the run this bisection
-(either line: today's hash or the former scheme's, which hashed the case's notes too) would make (the case with every --set, the end time and the files read); otherwise the bisection stops
-(exit 2) naming the run, rather than mix runs of another case. A run still undecided at its end time is
-carried on from its checkpoint (uhpc-macro --restart) to twice that end time, and so on up to
---max-end-time (default: --end-time, no extension), so that runs near the limit are decided by what the
-sphere does rather than by when the run stops; a resumed bisection recognises a run carried on to any
-end time of that ladder. The bracket's ends are run first: if the
+Each run is uhpc-macro at one velocity (rounded to 1 m/s) in DIR/v<velocity>/, made, kept or carried on
+as pipelines/carried_shot.py says: a run whose result.json exists is read, not rerun, so an interrupted
+bisection resumes, but only if it was made from the same inputs (the case with every --set, the end time
+and the files read; otherwise the bisection stops with exit 2 naming the run, rather than mix runs of
+another case); a run still undecided at its end time (--end-time, else a --set run.end_time_s, else the
+case's) is carried on from its checkpoint (uhpc-macro --restart) to twice that end time, and so on up to
+--max-end-time (default: the end time, no extension), so that runs near the limit are decided by what the
+sphere does rather than by when the run stops. The bracket's ends are run first: if the
 low end perforates (or the high end does not) the bracket is widened by its own width on that side,
 down to 50 m/s. A run counts as perforating when result.json says "perforated"; embedded, rebounded and
 undecided runs do not perforate (an undecided one is flagged: its end time was too short to decide it).
@@ -33,50 +32,10 @@ made, with its outcome and residual velocity, the failed runs with their diagnos
 """
 import argparse
 import json
-import math
 import pathlib
-import shlex
-import subprocess
 import sys
 
-
-def end_times(args):
-    """The end times a run may be carried to: --end-time, doubled up to --max-end-time."""
-    times = [args.end_time]
-    while times[-1] < args.max_end_time:
-        times.append(min(2.0 * times[-1], args.max_end_time))
-    return times
-
-
-def macro_command(args, velocity, out, end_time=None):
-    """uhpc-macro at one velocity, without the launcher and the output options."""
-    cmd = [args.macro, "--config", args.config, "--set", f"projectile.velocity_m_s={velocity}",
-           "--set", f"run.end_time_s={args.end_time if end_time is None else end_time}"]
-    if args.sdel:
-        cmd += ["--sdel", args.sdel]
-    for s in args.set or []:
-        cmd += ["--set", s]
-    return cmd
-
-
-def check_reusable(args, velocity, out, found):
-    """Stops (exit 2) unless the run in `out` (its inputs' hash `found`) was made from the inputs this
-    bisection would give it, at one of its end times."""
-    expected = []
-    for end_time in end_times(args):
-        done = subprocess.run(macro_command(args, velocity, out, end_time) + ["--inputs-hash"], capture_output=True,
-                              text=True)
-        if done.returncode != 0:
-            sys.exit(f"ballistic_limit.py: uhpc-macro --inputs-hash failed at {velocity} m/s: {done.stderr.strip()}")
-        # The inputs' hash, then (uhpc-macro since 2026-12-06) the same in the former scheme, notes included.
-        hashes = done.stdout.split()
-        expected.append(hashes[0] if hashes else "")
-        if found in hashes:
-            return
-    print(f"ballistic_limit.py: the run in {out} was made from other inputs (hash {found}, this bisection's "
-          f"{', '.join(expected)}: another case, SDEL, --set or end time); use another --out or remove it",
-          file=sys.stderr)
-    sys.exit(2)
+from carried_shot import Shot, end_time_and_sets
 
 
 def failed_run(runs, velocity, out, exit_code):
@@ -87,53 +46,15 @@ def failed_run(runs, velocity, out, exit_code):
     return runs[-1]
 
 
-def launch(args, velocity, out, end_time, restart):
-    """Runs uhpc-macro (a fresh run, or the undecided one in `out` carried on to end_time): None when it
-    finished, else the failed run's exit code (1, with its diagnostic); stops the bisection on any other
-    end."""
-    cmd = shlex.split(args.launch) + macro_command(args, velocity, out, end_time) + ["-q", "--out", str(out)]
-    if restart:
-        cmd.append("--restart")
-    print("ballistic_limit.py:", " ".join(cmd), flush=True)
-    done = subprocess.run(cmd)
-    if done.returncode == 2:  # bad input: every other run would fail the same way
-        print(f"ballistic_limit.py: uhpc-macro refused the input at {velocity} m/s (exit 2, above)", file=sys.stderr)
-        sys.exit(2)
-    if done.returncode == 1 and (out / "diagnostic.json").is_file():
-        print(f"ballistic_limit.py: the run at {velocity} m/s failed (exit 1); see {out}", file=sys.stderr, flush=True)
-        return done.returncode
-    if done.returncode != 0:
-        print(f"ballistic_limit.py: the run at {velocity} m/s ended with exit {done.returncode} and no diagnostic "
-              f"(killed, or its launcher failed); see {out}", file=sys.stderr)
-        sys.exit(3)
-    return None
-
-
 def run(args, velocity, runs):
     """The outcome at one velocity; a velocity is listed in runs once, however often the bisection asks."""
     for r in runs:
         if r["velocity_m_s"] == velocity:
             return r
     out = pathlib.Path(args.out) / f"v{velocity}"
-    result = out / "result.json"
-    diagnostic = out / "diagnostic.json"
-    if result.is_file():
-        check_reusable(args, velocity, out, json.loads(result.read_text()).get("provenance", {}).get("config_hash"))
-    elif diagnostic.is_file() and (out / "config.json").is_file():  # failed before: not rerun if the same inputs
-        check_reusable(args, velocity, out, json.loads((out / "config.json").read_text()).get("hash"))
-        return failed_run(runs, velocity, out, None)
-    else:
-        failure = launch(args, velocity, out, args.end_time, restart=False)
-        if failure is not None:
-            return failed_run(runs, velocity, out, failure)
-    r = json.loads(result.read_text())
-    # Undecided: carried on, each time to the next end time of the ladder past the one it reached.
-    while r.get("outcome") == "undecided" and r["end_time_s"] < args.max_end_time * (1.0 - 1e-9):
-        end_time = next(t for t in end_times(args) if t > r["end_time_s"] * (1.0 + 1e-9))
-        failure = launch(args, velocity, out, end_time, restart=True)
-        if failure is not None:
-            return failed_run(runs, velocity, out, failure)
-        r = json.loads(result.read_text())
+    r, failure = args.shot.decide(velocity, out)
+    if r is None:
+        return failed_run(runs, velocity, out, failure)
     runs.append({"velocity_m_s": velocity, "outcome": r.get("outcome", "perforated" if r["perforated"] else "not perforated"),
                  "perforated": bool(r["perforated"]), "residual_velocity_m_s": r["residual_velocity_m_s"],
                  "final_velocity_m_s": r["final_velocity_m_s"], "end_time_s": r["end_time_s"],
@@ -166,16 +87,17 @@ def main():
     ap.add_argument("--launch", default="", help="launcher prefix of each run, e.g. \"srun -N1 -n1 -c2 --exclusive\"")
     ap.add_argument("--config", required=True)
     ap.add_argument("--sdel")
-    ap.add_argument("--set", action="append")
+    ap.add_argument("--set", action="append", default=[])
     ap.add_argument("--low", type=float, required=True)
     ap.add_argument("--high", type=float, required=True)
     ap.add_argument("--width", type=float, default=10.0)
-    ap.add_argument("--end-time", type=float, default=1e-3)
+    ap.add_argument("--end-time", type=float, help="default: a --set run.end_time_s, else the case's")
     ap.add_argument("--max-end-time", type=float, help="an undecided run is carried on up to it (default: --end-time)")
     ap.add_argument("--max-failures", type=int, default=3, help="failed runs inside the bracket before it stops")
     ap.add_argument("--max-velocity", type=float, default=3000.0, help="the bracket's high end is widened up to it")
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
+    args.end_time, sets = end_time_and_sets("ballistic_limit.py", args.set, args.end_time, args.config)
     if args.max_end_time is None:
         args.max_end_time = args.end_time
     if not (0 < args.low < args.high <= args.max_velocity) or args.width <= 0 or args.max_failures < 0 \
@@ -184,6 +106,8 @@ def main():
               "0 < --end-time <= --max-end-time", file=sys.stderr)
         sys.exit(2)
     pathlib.Path(args.out).mkdir(parents=True, exist_ok=True)
+    args.shot = Shot("ballistic_limit.py", args.macro, args.launch, args.config, args.sdel, sets, args.end_time,
+                     args.max_end_time)
     runs = []
     lo, hi = int(round(args.low)), int(round(args.high))
     step = hi - lo
@@ -217,7 +141,7 @@ def main():
     summary = {"highest_not_perforating_m_s": lo, "lowest_perforating_m_s": hi, "bracket_width_m_s": hi - lo,
                "estimate_m_s": 0.5 * (lo + hi), "runs": runs, "undecided_runs_m_s": undecided, "failed_runs_m_s": failed,
                "width_reached": hi - lo <= args.width,
-               "config": args.config, "sdel": args.sdel, "overrides": args.set or [], "end_time_s": args.end_time,
+               "config": args.config, "sdel": args.sdel, "overrides": sets, "end_time_s": args.end_time,
                "max_end_time_s": args.max_end_time}
     out = pathlib.Path(args.out)
     (out / "ballistic_limit.json").write_text(json.dumps(summary, indent=2) + "\n")

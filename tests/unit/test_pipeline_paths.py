@@ -5,8 +5,8 @@ usage: test_pipeline_paths.py SOURCE_DIR
 
 From a scratch directory holding its own case file, `make -n -C SOURCE_DIR/pipelines <target>` (a dry run:
 nothing is built or run) with SHOT_CASE=mycase.json (in the scratch directory), SDEL=data/sdel_paper.json
-(not there: read from the repository root), OUT=rel_out and BUILD=rel_build. Every uhpc-macro and
-ballistic_limit.py command a target would run must name the case and SDEL by absolute paths that exist,
+(not there: read from the repository root), OUT=rel_out and BUILD=rel_build. Every uhpc-macro,
+ballistic_limit.py and carried_shot.py command a target would run must name the case and SDEL by absolute paths that exist,
 run <scratch>/rel_build's program and write under <scratch>/rel_out; the targets that run their own case
 through a sub-make (paper-model, model-variants) the same but for the case. A shell sets PWD to the
 directory it is in; the test sets it the same way. An empty OUT does not reach `rm -rf` in `clean`.
@@ -40,7 +40,8 @@ def main():
                    "VELOCITIES=700", "TS_VELOCITIES=700", "THICKNESSES=0.03", "VARIANTS=cutoff", "VARIANT_SDELS=paper"]
             done = subprocess.run(cmd, cwd=scratch, env=env, capture_output=True, text=True)
             commands = done.stdout.replace("\\\n", " ").splitlines()  # continued lines joined
-            runs = [l for l in commands if "uhpc-macro --config" in l or "ballistic_limit.py" in l]
+            scripts = ("ballistic_limit.py", "carried_shot.py")
+            runs = [l for l in commands if "uhpc-macro --config" in l or any(s in l for s in scripts)]
             problems = []
             if done.returncode != 0:
                 problems.append(f"exit {done.returncode}: {done.stderr.strip()[-300:]}")
@@ -55,7 +56,7 @@ def main():
                     problems.append(f"case not {case}: {line[:300]}")
                 if "uhpc-macro --config" in line and str(scratch / "rel_build" / "macro" / "uhpc-macro") not in line:
                     problems.append(f"program not <scratch>/rel_build's: {line[:300]}")
-                if "ballistic_limit.py" in line and f"--macro {scratch / 'rel_build' / 'macro' / 'uhpc-macro'}" not in line:
+                if any(s in line for s in scripts) and f"--macro {scratch / 'rel_build' / 'macro' / 'uhpc-macro'}" not in line:
                     problems.append(f"program not <scratch>/rel_build's: {line[:300]}")
                 if not sdel or sdel.group(1) != str(src / "data" / "sdel_paper.json"):
                     problems.append(f"SDEL not the root's: {line[:300]}")

@@ -1,0 +1,186 @@
+#!/usr/bin/env python3
+"""One shot decided by the sphere rather than by the end time: uhpc-macro at one impact velocity, kept if it
+was already made from the same inputs, and carried on from its checkpoint while it is undecided.
+
+usage: carried_shot.py --macro UHPC_MACRO --config CASE.json [--sdel SDEL.json] [--set key=value ...]
+                       --velocity V [--end-time T] [--max-end-time T] [--launch PREFIX] --out DIR
+
+The run goes to DIR with run.end_time_s = T (--end-time, else a --set run.end_time_s=T among the sets,
+else the case's own run.end_time_s). A run still undecided there (the sphere neither through, nor stopped,
+nor thrown back) is carried on from its checkpoint (uhpc-macro --restart) to twice that end time, and so
+on up to --max-end-time (default: the end time, no extension). A run whose result.json exists is kept if
+it was made from the inputs this command would give it at one end time of that ladder (its
+provenance.config_hash against `uhpc-macro ... --inputs-hash`, either line), carried on if it is still
+undecided below --max-end-time, and refused otherwise (exit 2, naming it: another case, SDEL, --set or
+end time). A run that failed numerically before (DIR/diagnostic.json and DIR/config.json of the same
+inputs) is not run again (exit 1; remove DIR to run it again).
+--launch puts a launcher before each run of uhpc-macro, split as a shell would (e.g. "srun -N1 -n1 -c2
+--exclusive"); a kept run launches nothing.
+Exit codes: 0 the run is in DIR (decided, or undecided at --max-end-time: its result.json says which);
+1 it failed numerically (its diagnostic.json beside it); 2 bad input (the arguments, the case, uhpc-macro's
+exit 2, a run made from other inputs); 3 a run that neither finished nor failed numerically (killed, or
+its launcher failed).
+
+The sweep and thickness study of pipelines/Makefile run each shot through this command; ballistic_limit.py
+runs each of its bisection's shots through the same Shot.
+"""
+import argparse
+import json
+import pathlib
+import shlex
+import subprocess
+import sys
+
+END_TIME_KEY = "run.end_time_s"
+
+
+class Shot:
+    """How a study runs its shots: the program, its launcher, the case, the SDEL, the --set overrides
+    (without the end time) and the ladder of end times an undecided run is carried along."""
+
+    def __init__(self, prog, macro, launch, config, sdel, sets, end_time, max_end_time):
+        self.prog, self.macro, self.launch, self.config, self.sdel = prog, macro, launch, config, sdel
+        self.sets, self.end_time, self.max_end_time = sets, end_time, max_end_time
+
+    def end_times(self):
+        """The end times a run may be carried to: the end time, doubled up to the maximum."""
+        times = [self.end_time]
+        while times[-1] < self.max_end_time:
+            times.append(min(2.0 * times[-1], self.max_end_time))
+        return times
+
+    def command(self, velocity, end_time):
+        """uhpc-macro at one velocity and end time, without the launcher and the output options."""
+        cmd = [self.macro, "--config", self.config, "--set", f"projectile.velocity_m_s={velocity}",
+               "--set", f"{END_TIME_KEY}={end_time}"]
+        if self.sdel:
+            cmd += ["--sdel", self.sdel]
+        for s in self.sets:
+            cmd += ["--set", s]
+        return cmd
+
+    def check_reusable(self, velocity, out, found):
+        """Stops (exit 2) unless the run in `out` (its inputs' hash `found`) was made from the inputs this
+        study would give it, at one of its end times."""
+        expected = []
+        for end_time in self.end_times():
+            done = subprocess.run(self.command(velocity, end_time) + ["--inputs-hash"], capture_output=True, text=True)
+            if done.returncode != 0:
+                sys.exit(f"{self.prog}: uhpc-macro --inputs-hash failed at {velocity} m/s: {done.stderr.strip()}")
+            # The inputs' hash, then (uhpc-macro since 2026-12-06) the same in the former scheme, notes included.
+            hashes = done.stdout.split()
+            expected.append(hashes[0] if hashes else "")
+            if found in hashes:
+                return
+        print(f"{self.prog}: the run in {out} was made from other inputs (hash {found}, this study's "
+              f"{', '.join(expected)}: another case, SDEL, --set or end time); use another --out or remove it",
+              file=sys.stderr)
+        sys.exit(2)
+
+    def launch_run(self, velocity, out, end_time, restart):
+        """Runs uhpc-macro (a fresh run, or the undecided one in `out` carried on to end_time): None when it
+        finished, else the failed run's exit code (1, with its diagnostic); stops the study on any other
+        end."""
+        cmd = shlex.split(self.launch) + self.command(velocity, end_time) + ["-q", "--out", str(out)]
+        if restart:
+            cmd.append("--restart")
+        print(f"{self.prog}:", " ".join(cmd), flush=True)
+        done = subprocess.run(cmd)
+        if done.returncode == 2:  # bad input: every other run would fail the same way
+            print(f"{self.prog}: uhpc-macro refused the input at {velocity} m/s (exit 2, above)", file=sys.stderr)
+            sys.exit(2)
+        if done.returncode == 1 and (out / "diagnostic.json").is_file():
+            print(f"{self.prog}: the run at {velocity} m/s failed (exit 1); see {out}", file=sys.stderr, flush=True)
+            return done.returncode
+        if done.returncode != 0:
+            print(f"{self.prog}: the run at {velocity} m/s ended with exit {done.returncode} and no diagnostic "
+                  f"(killed, or its launcher failed); see {out}", file=sys.stderr)
+            sys.exit(3)
+        return None
+
+    def decide(self, velocity, out):
+        """The run at one velocity in `out`, made, kept or carried on: (its result.json, None), or (None,
+        the exit code) for a run that failed numerically (None as the code: it failed before, not rerun)."""
+        result, diagnostic = out / "result.json", out / "diagnostic.json"
+        if result.is_file():
+            self.check_reusable(velocity, out, json.loads(result.read_text()).get("provenance", {}).get("config_hash"))
+        elif diagnostic.is_file() and (out / "config.json").is_file():  # failed before: not rerun if the same inputs
+            self.check_reusable(velocity, out, json.loads((out / "config.json").read_text()).get("hash"))
+            return None, None
+        else:
+            failure = self.launch_run(velocity, out, self.end_time, restart=False)
+            if failure is not None:
+                return None, failure
+        r = json.loads(result.read_text())
+        # Undecided: carried on, each time to the next end time of the ladder past the one it reached.
+        while r.get("outcome") == "undecided" and r["end_time_s"] < self.max_end_time * (1.0 - 1e-9):
+            end_time = next(t for t in self.end_times() if t > r["end_time_s"] * (1.0 + 1e-9))
+            failure = self.launch_run(velocity, out, end_time, restart=True)
+            if failure is not None:
+                return None, failure
+            r = json.loads(result.read_text())
+        return r, None
+
+
+def end_time_and_sets(prog, sets, end_time, config):
+    """The ladder's first end time and the sets without it: --end-time, else the last --set
+    run.end_time_s, else the case's run.end_time_s; both given and different is refused (exit 2), since
+    the set would otherwise override the ladder's end times."""
+    given = [s.split("=", 1)[1] for s in sets if s.split("=", 1)[0].strip() == END_TIME_KEY]
+    rest = [s for s in sets if s.split("=", 1)[0].strip() != END_TIME_KEY]
+    try:
+        from_sets = float(given[-1]) if given else None
+    except ValueError:
+        sys.exit(f"{prog}: --set {END_TIME_KEY}={given[-1]}: not a number")
+    if end_time is not None and from_sets is not None and from_sets != end_time:
+        print(f"{prog}: the end time is given twice, --end-time {end_time:g} and --set {END_TIME_KEY}={given[-1]}: "
+              f"give it once", file=sys.stderr)
+        sys.exit(2)
+    if end_time is None:
+        end_time = from_sets
+    if end_time is None:
+        try:
+            end_time = float(json.loads(pathlib.Path(config).read_text())["run"]["end_time_s"])
+        except (OSError, ValueError, KeyError, TypeError) as e:
+            print(f"{prog}: {config}: no run.end_time_s to start from ({type(e).__name__}: {e}); give --end-time",
+                  file=sys.stderr)
+            sys.exit(2)
+    return end_time, rest
+
+
+def main():
+    prog = "carried_shot.py"
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--macro", required=True)
+    ap.add_argument("--launch", default="", help="launcher prefix of each run, e.g. \"srun -N1 -n1 -c2 --exclusive\"")
+    ap.add_argument("--config", required=True)
+    ap.add_argument("--sdel")
+    ap.add_argument("--set", action="append", default=[])
+    ap.add_argument("--velocity", required=True, help="m/s, passed to uhpc-macro as written")
+    ap.add_argument("--end-time", type=float)
+    ap.add_argument("--max-end-time", type=float, help="an undecided run is carried on up to it (default: the end time)")
+    ap.add_argument("--out", required=True)
+    args = ap.parse_args()
+    end_time, sets = end_time_and_sets(prog, args.set, args.end_time, args.config)
+    max_end_time = end_time if args.max_end_time is None else args.max_end_time
+    try:
+        velocity_ok = float(args.velocity) > 0
+    except ValueError:
+        velocity_ok = False
+    if not (0 < end_time <= max_end_time) or not velocity_ok:
+        print(f"{prog}: need 0 < end time ({end_time:g}) <= --max-end-time ({max_end_time:g}) and --velocity > 0 "
+              f"({args.velocity})",
+              file=sys.stderr)
+        sys.exit(2)
+    shot = Shot(prog, args.macro, args.launch, args.config, args.sdel, sets, end_time, max_end_time)
+    r, failure = shot.decide(args.velocity, pathlib.Path(args.out))
+    if r is None:
+        if failure is None:
+            print(f"{prog}: the run in {args.out} failed before with the same inputs (its diagnostic.json); "
+                  f"remove it to run it again", file=sys.stderr)
+        sys.exit(1)
+    sys.exit(0)
+
+
+if __name__ == "__main__":
+    main()

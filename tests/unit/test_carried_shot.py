@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""pipelines/carried_shot.py (one shot of a sweep) against the stand-in for uhpc-macro of
+test_ballistic_limit.py: a run undecided until 3 ms is carried on from its checkpoint 1 -> 2 -> 4 ms and
+decided; run again, it launches nothing; a run carried on only to 2 ms stays undecided (exit 0, its
+result says so) and is carried on further when the maximum is raised; the end time is taken from a --set
+run.end_time_s (not overridden by the ladder) or from the case; given twice and different, refused (exit
+2); a run made from other inputs refused (exit 2), untouched; a numerical failure exits 1 and is not
+rerun; a killed run exits 3; a decided run launches through --launch, a kept one does not."""
+import json
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+from test_ballistic_limit import STAND_IN, check
+
+SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "pipelines" / "carried_shot.py"
+
+
+def stand_in(tmp, undecided=(), fail_at=(), kill_at=()):
+    macro = pathlib.Path(tmp) / "macro.py"
+    macro.write_text(STAND_IN.format(python=sys.executable, limit=237, fail_at=list(fail_at), kill_at=list(kill_at),
+                                     undecided=list(undecided), decide_time=3e-3))
+    macro.chmod(0o755)
+    case = pathlib.Path(tmp) / "case.json"
+    case.write_text(json.dumps({"run": {"end_time_s": 1e-3}}))
+    return macro, case
+
+
+def shot(tmp, velocity, *extra, max_end_time=None, case=None):
+    macro, own_case = stand_in(tmp, undecided=[238, 232], fail_at=[250], kill_at=[260])
+    out = pathlib.Path(tmp) / "sweep" / f"v{velocity}"
+    out.parent.mkdir(exist_ok=True)  # the stand-in logs its runs beside them
+    args = [sys.executable, str(SCRIPT), "--macro", str(macro), "--config", str(case or own_case),
+            "--velocity", str(velocity), *extra, "--out", str(out)]
+    if max_end_time:
+        args += ["--max-end-time", max_end_time]
+    done = subprocess.run(args, capture_output=True, text=True)
+    return done, out
+
+
+def log(tmp, name):
+    f = pathlib.Path(tmp) / "sweep" / name
+    return [int(c) for c in f.read_text().split()] if f.exists() else []
+
+
+def result(out):
+    return json.loads((out / "result.json").read_text())
+
+
+def main():
+    with tempfile.TemporaryDirectory() as tmp:  # undecided until 3 ms: carried on 1 -> 2 -> 4 ms, decided
+        done, out = shot(tmp, 238, max_end_time="4e-3")
+        r = result(out)
+        check(done.returncode == 0 and r["outcome"] == "perforated" and log(tmp, "calls.txt") == [238]
+              and log(tmp, "restarts.txt") == [238, 238], f"{done.returncode} {r} {done.stderr}")
+        done, out = shot(tmp, 238, max_end_time="4e-3")  # run again: kept, nothing launched
+        check(done.returncode == 0 and log(tmp, "calls.txt") == [238] and log(tmp, "restarts.txt") == [238, 238]
+              and "carried_shot.py:" not in done.stdout, f"rerun launched: {done.stdout}")
+        done, out = shot(tmp, 238, max_end_time="8e-3")  # a ladder that holds 4 ms: kept as well
+        check(done.returncode == 0 and log(tmp, "restarts.txt") == [238, 238], f"{done.stderr}")
+        done, out = shot(tmp, 238, "--end-time", "5e-4")  # other inputs (another end time): refused, untouched
+        check(done.returncode == 2 and "other inputs" in done.stderr and result(out)["outcome"] == "perforated",
+              f"{done.returncode} {done.stderr}")
+    with tempfile.TemporaryDirectory() as tmp:  # only to 2 ms: undecided, then carried on when allowed
+        done, out = shot(tmp, 232, max_end_time="2e-3")
+        check(done.returncode == 0 and result(out)["outcome"] == "undecided" and result(out)["end_time_s"] == 2e-3
+              and log(tmp, "restarts.txt") == [232], f"{done.returncode} {done.stderr}")
+        done, out = shot(tmp, 232, max_end_time="4e-3")
+        check(done.returncode == 0 and result(out)["outcome"] == "embedded" and log(tmp, "restarts.txt") == [232, 232]
+              and log(tmp, "calls.txt") == [232], f"{done.returncode} {done.stderr}")
+        done, out = shot(tmp, 232)  # no maximum: the end time's run only, which the 4 ms run is not
+        check(done.returncode == 2 and "other inputs" in done.stderr, f"{done.returncode} {done.stderr}")
+    with tempfile.TemporaryDirectory() as tmp:  # the end time from a --set: the ladder starts there
+        done, out = shot(tmp, 232, "--set", "run.end_time_s=2e-3", max_end_time="4e-3")
+        check(done.returncode == 0 and result(out)["outcome"] == "embedded" and log(tmp, "restarts.txt") == [232],
+              f"2 -> 4 ms: {done.returncode} {log(tmp, 'restarts.txt')} {done.stderr}")
+        done, out = shot(tmp, 232, "--set", "run.end_time_s=2e-3", "--end-time", "1e-3")
+        check(done.returncode == 2 and "given twice" in done.stderr, f"{done.returncode} {done.stderr}")
+        done, out = shot(tmp, 232, "--end-time", "1e-3", "--max-end-time", "5e-4")
+        check(done.returncode == 2 and "--max-end-time" in done.stderr, f"{done.returncode} {done.stderr}")
+        done, out = shot(tmp, 300, case=pathlib.Path(tmp) / "missing.json")
+        check(done.returncode == 2 and "missing.json" in done.stderr and "run.end_time_s" in done.stderr,
+              f"{done.returncode} {done.stderr}")
+    with tempfile.TemporaryDirectory() as tmp:  # failures
+        done, out = shot(tmp, 250)
+        check(done.returncode == 1 and "failed" in done.stderr, f"{done.returncode} {done.stderr}")
+        done, out = shot(tmp, 250)  # not rerun
+        check(done.returncode == 1 and log(tmp, "calls.txt") == [250] and "failed before" in done.stderr,
+              f"{done.returncode} {log(tmp, 'calls.txt')} {done.stderr}")
+        done, out = shot(tmp, 260)
+        check(done.returncode == 3 and "no diagnostic" in done.stderr, f"{done.returncode} {done.stderr}")
+    with tempfile.TemporaryDirectory() as tmp:  # through a launcher: a missing run launched, a kept one not
+        launcher = pathlib.Path(tmp) / "launcher.sh"
+        launcher.write_text(f"#!/bin/sh\necho \"$*\" >> {tmp}/launches.txt\nexec \"$@\"\n")
+        launcher.chmod(0o755)
+        for _ in range(2):
+            done, out = shot(tmp, 300, "--launch", str(launcher))
+        launches = (pathlib.Path(tmp) / "launches.txt").read_text().splitlines()
+        check(done.returncode == 0 and len(launches) == 1 and "projectile.velocity_m_s=300" in launches[0],
+              f"{launches}")
+    print("carried_shot.py: carrying on, reuse, the end time's sources, failures and the launcher as documented")
+
+
+if __name__ == "__main__":
+    main()
