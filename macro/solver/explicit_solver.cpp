@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 #include <iterator>
 #include <limits>
 #include <stdexcept>
@@ -131,6 +132,14 @@ void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
   sphere_->x_prev = sphere_->x;
 }
 
+double ExplicitSolver::stable_step(std::initializer_list<double> critical_steps) const {
+  return options_.cfl * std::min(critical_steps);
+}
+
+double ExplicitSolver::travel_limit() const {
+  return sphere_ ? sphere_contact_.travel_limit(*sphere_) : std::numeric_limits<double>::infinity();
+}
+
 const SecondGradientOptions* ExplicitSolver::second_options() const {
   return options_.stabilization == Stabilization::Nsni ? &options_.second_gradients : nullptr;
 }
@@ -146,29 +155,27 @@ void ExplicitSolver::velocity_gradients(double* L, double* G) const {
 
 void ExplicitSolver::initialize() {
   // Stresses from the states (zero for a body at rest), wave speeds at the reference density.
+  double material_step = std::numeric_limits<double>::infinity();
   std::visit(
       [&](auto& block) {
-        double dt_min = std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < p_.n; ++i) {
           Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p_.stress.data() + 9 * i) = block.state[i].stress;
           p_.wave_speed[i] = block.law.wave_speed(block.state[i], p_.volume0[i] / p_.volume[i]);
-          dt_min = std::min(dt_min, options_.viscosity.critical_step(stable_length(p_.volume[i], p_.spacing[i]), p_.wave_speed[i], 0.0));
+          material_step = std::min(material_step, options_.viscosity.critical_step(stable_length(p_.volume[i], p_.spacing[i]), p_.wave_speed[i], 0.0));
         }
-        dt_ = options_.cfl * dt_min;
       },
       material_);
-  if (sphere_) {
-    sphere_contact_.initialize(*sphere_, p_);
-    // The first contact forces are predicted over the first step: bound it before they are computed.
-    dt_ = std::min(dt_, options_.cfl * sphere_contact_.travel_limit(*sphere_));
-  }
+  if (sphere_) sphere_contact_.initialize(*sphere_, p_);
+  // The first contact forces are predicted over the first step: bound it by the travel before they are
+  // computed, then by the contact they give.
+  dt_ = stable_step({material_step, travel_limit()});
   domain_ = options_.domain ? *options_.domain : default_domain();
   constrain_velocities();
   p_.x_prev = p_.x;
   rebuild_shapes(p_.x.data());
   shapes_at_x_ = true;
   compute_forces(0.0, dt());  // no step has produced this configuration yet
-  if (sphere_) dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
+  if (sphere_) dt_ = stable_step({material_step, travel_limit(), contact_.critical_step});
   f_ext_old_ = p_.f_ext;
   f_contact_old_ = p_.f_contact;
   if (sphere_) sphere_force_old_ = sphere_->force;
@@ -257,23 +264,19 @@ void ExplicitSolver::compute_accelerations(double dt) {
   ledger_.internal += sums.stress_work + sums.stabilization_work;
   ledger_.stabilization += sums.stabilization_work;
   ledger_.viscous += sums.viscous_work;
-  dt_ = options_.cfl * sums.min_critical_step;
   if (sums.inverted >= 0) inverted_ = sums.inverted;
 
   if (config == StrainConfiguration::Midpoint) {
     rebuild_shapes(p_.x.data());
     shapes_at_x_ = true;
   }
-  // The next step as far as it is known now (the contact's travel limit may lower it; the kinematic
-  // contact predicts the next configuration with it).
-  double dt_next = dt_;
-  if (options_.fixed_dt_s > 0) dt_next = options_.fixed_dt_s;
-  else if (sphere_) dt_next = std::min(dt_next, options_.cfl * sphere_contact_.travel_limit(*sphere_));
+  // The next step as far as it is known now (the kinematic contact predicts the next configuration
+  // with it), then as the contact's forces bound it.
+  const double dt_next =
+      options_.fixed_dt_s > 0 ? options_.fixed_dt_s : stable_step({sums.min_critical_step, travel_limit()});
   compute_forces(dt, dt_next, config == StrainConfiguration::Midpoint);
-  if (sphere_) {
-    dt_ = std::min(dt_, options_.cfl * contact_.critical_step);
-    ledger_.contact_stored = contact_.stored_energy;
-  }
+  dt_ = stable_step({sums.min_critical_step, sphere_ ? contact_.critical_step : std::numeric_limits<double>::infinity()});
+  if (sphere_) ledger_.contact_stored = contact_.stored_energy;
 
   // External work and impulse by the trapezoid rule over the step.
   double work = 0.0, ix = 0.0, iy = 0.0, iz = 0.0;

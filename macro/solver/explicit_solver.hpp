@@ -21,6 +21,7 @@
 // times the step just taken, the step is repeated from the saved state with the new stable step.
 // Nothing allocates inside steps once the neighbour counts have settled.
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <utility>
@@ -179,6 +180,12 @@ class ExplicitSolver {
 
  private:
   const SecondGradientOptions* second_options() const;  // null without NSNI
+  // The stable step, the one place solver.cfl applies: cfl times the smallest of the critical steps
+  // given (the particles' from their wave speed and bulk viscosity over the stable length; the sphere
+  // contact's from its stiffness and travel; the sphere's travel limit), each known at a different
+  // point of the step.
+  double stable_step(std::initializer_list<double> critical_steps) const;
+  double travel_limit() const;  // the sphere's travel limit (infinity without a sphere)
   // f_int, f_ext and a at the current configuration (shapes_ up to date); dt: the step that produced
   // it (friction's cap; 0 at the start), dt_next: the next step (the kinematic contact's prediction).
   // internal false: f_int is already there (computed with the stress update, compute_accelerations).
