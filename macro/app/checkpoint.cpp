@@ -75,17 +75,18 @@ void write_checkpoint(const std::filesystem::path& file, const RunCheckpoint& c)
   h5.set_attribute("", "format", std::string(kFormat));
   h5.set_attribute("", "config_hash", c.config_hash);
   h5.set_attribute("", "build", c.build);
-  const SolverCheckpoint& s = c.solver;
-  for (const auto& [name, values] : s.particle_fields) h5.write("particles/" + name, values, "1");
-  h5.write("solver/material_states", s.material_states, "1");
+  for (const auto& [name, values] : c.solver.particle_fields) h5.write("particles/" + name, values, "1");
+  h5.write("solver/material_states", c.solver.material_states, "1");
+  const StepState& s = c.solver.state;
+  const StepCounters& n = c.solver.counters;
   h5.write("solver/f_ext_old", s.f_ext_old, "N");
   h5.write("solver/f_contact_old", s.f_contact_old, "N");
   h5.write("solver/sphere", s.sphere ? bytes_of(*s.sphere) : std::vector<std::uint8_t>{}, "1");
   h5.write("solver/sphere_force_old", bytes_of(s.sphere_force_old), "1");
   h5.write("solver/contact", bytes_of(s.contact), "1");
   h5.write("solver/ledger", bytes_of(s.ledger), "1");
-  h5.write("solver/clock", std::vector<double>{s.time_s, s.dt_s, s.wall_force_N, s.last_dt_s}, "1");
-  h5.write("solver/counters", std::vector<std::int64_t>{s.steps, s.repeats}, "1");
+  h5.write("solver/clock", std::vector<double>{s.time_s, s.dt_s, s.wall_force_N, n.last_dt_s}, "1");
+  h5.write("solver/counters", std::vector<std::int64_t>{n.steps, n.repeats}, "1");
   h5.write("run/history", text_bytes(c.history_text), "1");
   h5.write("run/history_rows", std::vector<std::int64_t>{static_cast<std::int64_t>(c.history_rows)}, "1");
   h5.write("run/impact", bytes_of(c.impact), "1");
@@ -114,10 +115,11 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& file, const std::stri
       throw InputError(name + ": written for a case whose hash is " + c.config_hash + ", this case's is " + config_hash +
                        ": restart with the case, --sdel and --set of the run that wrote it (only " +
                        restart_may_change_list() + " may change)");
-    SolverCheckpoint& s = c.solver;
     for (const std::string& field : h5.children("particles"))
-      s.particle_fields.emplace_back(field, h5.read_doubles("particles/" + field).values);
-    s.material_states = h5.read_bytes("solver/material_states").values;
+      c.solver.particle_fields.emplace_back(field, h5.read_doubles("particles/" + field).values);
+    c.solver.material_states = h5.read_bytes("solver/material_states").values;
+    StepState& s = c.solver.state;
+    StepCounters& n = c.solver.counters;
     s.f_ext_old = h5.read_doubles("solver/f_ext_old").values;
     s.f_contact_old = h5.read_doubles("solver/f_contact_old").values;
     const std::vector<std::uint8_t> sphere = h5.read_bytes("solver/sphere").values;
@@ -131,9 +133,9 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& file, const std::stri
     s.time_s = clock[0];
     s.dt_s = clock[1];
     s.wall_force_N = clock[2];
-    s.last_dt_s = clock[3];
-    s.steps = counters[0];
-    s.repeats = counters[1];
+    n.last_dt_s = clock[3];
+    n.steps = counters[0];
+    n.repeats = counters[1];
     c.history_text = bytes_text(h5.read_bytes("run/history").values);
     const std::vector<std::int64_t> rows = h5.read_int64("run/history_rows").values;
     if (rows.size() != 1 || rows[0] < 0) throw std::runtime_error("run/history_rows: wrong size");
@@ -155,7 +157,8 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& file, const std::stri
 }
 
 void check_checkpoint_values(const RunCheckpoint& c, const RunSettings& run, const std::filesystem::path& file) {
-  const SolverCheckpoint& s = c.solver;
+  const StepState& s = c.solver.state;
+  const StepCounters& n = c.solver.counters;
   const auto refuse = [&](const std::string& value, const std::string& reason) {
     throw InputError(file.string() + ": " + value + ": " + reason);
   };
@@ -165,19 +168,19 @@ void check_checkpoint_values(const RunCheckpoint& c, const RunSettings& run, con
   if (!(s.time_s < run.end_time_s))
     refuse(fmt::format("solver/clock time_s = {} s", s.time_s),
            fmt::format("at or past run.end_time_s = {} s: a restart carries a run on to a later end time", run.end_time_s));
-  if (s.steps < 0 || s.steps > run.max_steps)
-    refuse(fmt::format("solver/counters steps = {}", s.steps),
+  if (n.steps < 0 || n.steps > run.max_steps)
+    refuse(fmt::format("solver/counters steps = {}", n.steps),
            fmt::format("outside [0, run.max_steps = {}]{} (a run that really took more steps goes on with a larger "
                        "run.max_steps)",
                        run.max_steps, edited));
-  if ((s.steps == 0) != (s.time_s == 0.0))
-    refuse(fmt::format("solver/counters steps = {} at solver/clock time_s = {}", s.steps, s.time_s),
+  if ((n.steps == 0) != (s.time_s == 0.0))
+    refuse(fmt::format("solver/counters steps = {} at solver/clock time_s = {}", n.steps, s.time_s),
            "a run is at time 0 exactly at step 0" + edited);
-  if (s.repeats < 0) refuse(fmt::format("solver/counters repeats = {}", s.repeats), "negative" + edited);
+  if (n.repeats < 0) refuse(fmt::format("solver/counters repeats = {}", n.repeats), "negative" + edited);
   if (!std::isfinite(s.dt_s) || !(s.dt_s > 0.0))
     refuse(fmt::format("solver/clock dt_s = {}", s.dt_s), "not a step > 0 s" + edited);
-  if (!std::isfinite(s.last_dt_s) || s.last_dt_s < 0.0 || s.last_dt_s > s.time_s)
-    refuse(fmt::format("solver/clock last_dt_s = {}", s.last_dt_s), fmt::format("outside [0, time_s = {}]", s.time_s) + edited);
+  if (!std::isfinite(n.last_dt_s) || n.last_dt_s < 0.0 || n.last_dt_s > s.time_s)
+    refuse(fmt::format("solver/clock last_dt_s = {}", n.last_dt_s), fmt::format("outside [0, time_s = {}]", s.time_s) + edited);
   if (!std::isfinite(s.wall_force_N))
     refuse(fmt::format("solver/clock wall_force_N = {}", s.wall_force_N), "not finite" + edited);
   if (!std::isfinite(c.fields.last_time_s) || c.fields.last_time_s > s.time_s)

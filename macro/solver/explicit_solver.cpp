@@ -100,8 +100,8 @@ ExplicitSolver::ExplicitSolver(Particles particles, MaterialSet material, const 
   if (!(options_.fragment_rcond >= 0 && options_.fragment_rcond < 1))
     throw std::invalid_argument("ExplicitSolver: fragment_rcond must be in [0, 1)");
   shapes_ = empty_shape_cache();
-  f_ext_old_.assign(3 * p_.n, 0.0);
-  f_contact_old_.assign(3 * p_.n, 0.0);
+  st_.f_ext_old.assign(3 * p_.n, 0.0);
+  st_.f_contact_old.assign(3 * p_.n, 0.0);
   if (p_.f_contact.size() != 3 * p_.n) p_.f_contact.assign(3 * p_.n, 0.0);
   if (options_.stabilization == Stabilization::Nsni) {
     p_.nsni_moment_scale = options_.nsni_coefficient;
@@ -128,8 +128,8 @@ ShapeCache ExplicitSolver::empty_shape_cache() const {
 void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
   if (initialized_) throw std::logic_error("ExplicitSolver::set_sphere: call before initialize()");
   sphere.validate();
-  sphere_ = sphere;
-  sphere_->x_prev = sphere_->x;
+  st_.sphere = sphere;
+  st_.sphere->x_prev = st_.sphere->x;
 }
 
 double ExplicitSolver::stable_step(std::initializer_list<double> critical_steps) const {
@@ -137,7 +137,7 @@ double ExplicitSolver::stable_step(std::initializer_list<double> critical_steps)
 }
 
 double ExplicitSolver::travel_limit() const {
-  return sphere_ ? sphere_contact_.travel_limit(*sphere_) : std::numeric_limits<double>::infinity();
+  return st_.sphere ? sphere_contact_.travel_limit(*st_.sphere) : std::numeric_limits<double>::infinity();
 }
 
 const SecondGradientOptions* ExplicitSolver::second_options() const {
@@ -165,24 +165,24 @@ void ExplicitSolver::initialize() {
         }
       },
       material_);
-  if (sphere_) sphere_contact_.initialize(*sphere_, p_);
+  if (st_.sphere) sphere_contact_.initialize(*st_.sphere, p_);
   // The first contact forces are predicted over the first step: bound it by the travel before they are
   // computed, then by the contact they give.
-  dt_ = stable_step({material_step, travel_limit()});
+  st_.dt_s = stable_step({material_step, travel_limit()});
   domain_ = options_.domain ? *options_.domain : default_domain();
   constrain_velocities();
   p_.x_prev = p_.x;
   rebuild_shapes(p_.x.data());
   shapes_at_x_ = true;
   compute_forces(0.0, dt());  // no step has produced this configuration yet
-  if (sphere_) dt_ = stable_step({material_step, travel_limit(), contact_.critical_step});
-  f_ext_old_ = p_.f_ext;
-  f_contact_old_ = p_.f_contact;
-  if (sphere_) sphere_force_old_ = sphere_->force;
+  if (st_.sphere) st_.dt_s = stable_step({material_step, travel_limit(), st_.contact.critical_step});
+  st_.f_ext_old = p_.f_ext;
+  st_.f_contact_old = p_.f_contact;
+  if (st_.sphere) st_.sphere_force_old = st_.sphere->force;
   update_momentum_and_kinetic();
-  ledger_.kinetic_initial = ledger_.kinetic;
-  ledger_.momentum_initial = ledger_.momentum;
-  ledger_.contact_stored = contact_.stored_energy;
+  st_.ledger.kinetic_initial = st_.ledger.kinetic;
+  st_.ledger.momentum_initial = st_.ledger.momentum;
+  st_.ledger.contact_stored = st_.contact.stored_energy;
   save_state();  // sizes the saved copy once, so the step loop only copies
   initialized_ = true;
 }
@@ -196,7 +196,7 @@ Region ExplicitSolver::default_domain() const {
     }
   };
   for (std::size_t i = 0; i < p_.n; ++i) grow(p_.x.data() + 3 * i, 0.5 * p_.spacing[i]);
-  if (sphere_) grow(sphere_->x.data(), sphere_->radius_m);
+  if (st_.sphere) grow(st_.sphere->x.data(), st_.sphere->radius_m);
   double extent = 0.0;
   for (int d = 0; d < 3; ++d) extent = std::max(extent, box.hi[d] - box.lo[d]);
   for (int d = 0; d < 3; ++d) {
@@ -214,8 +214,8 @@ void ExplicitSolver::constrain_velocities() {
 
 void ExplicitSolver::compute_accelerations(double dt) {
   const std::int64_t n = static_cast<std::int64_t>(p_.n);
-  if (sphere_) {  // the sphere drifts where the particles drift (velocity_verlet_step, before this call)
-    RigidSphere& s = *sphere_;
+  if (st_.sphere) {  // the sphere drifts where the particles drift (velocity_verlet_step, before this call)
+    RigidSphere& s = *st_.sphere;
     for (int d = 0; d < 3; ++d) {
       s.x_prev[d] = s.x[d];
       s.x[d] += dt * s.v[d];
@@ -261,9 +261,9 @@ void ExplicitSolver::compute_accelerations(double dt) {
         },
         material_);
   }
-  ledger_.internal += sums.stress_work + sums.stabilization_work;
-  ledger_.stabilization += sums.stabilization_work;
-  ledger_.viscous += sums.viscous_work;
+  st_.ledger.internal += sums.stress_work + sums.stabilization_work;
+  st_.ledger.stabilization += sums.stabilization_work;
+  st_.ledger.viscous += sums.viscous_work;
   if (sums.inverted >= 0) inverted_ = sums.inverted;
 
   if (config == StrainConfiguration::Midpoint) {
@@ -275,25 +275,25 @@ void ExplicitSolver::compute_accelerations(double dt) {
   const double dt_next =
       options_.fixed_dt_s > 0 ? options_.fixed_dt_s : stable_step({sums.min_critical_step, travel_limit()});
   compute_forces(dt, dt_next, config == StrainConfiguration::Midpoint);
-  dt_ = stable_step({sums.min_critical_step, sphere_ ? contact_.critical_step : std::numeric_limits<double>::infinity()});
-  if (sphere_) ledger_.contact_stored = contact_.stored_energy;
+  st_.dt_s = stable_step({sums.min_critical_step, st_.sphere ? st_.contact.critical_step : std::numeric_limits<double>::infinity()});
+  if (st_.sphere) st_.ledger.contact_stored = st_.contact.stored_energy;
 
   // External work and impulse by the trapezoid rule over the step.
   double work = 0.0, ix = 0.0, iy = 0.0, iz = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : work, ix, iy, iz) if (n >= kParallelMinParticles)
   for (std::int64_t i = 0; i < n; ++i) {
     double f[3];
-    for (int d = 0; d < 3; ++d) f[d] = 0.5 * (f_ext_old_[3 * i + d] + p_.f_ext[3 * i + d]);
+    for (int d = 0; d < 3; ++d) f[d] = 0.5 * (st_.f_ext_old[3 * i + d] + p_.f_ext[3 * i + d]);
     for (int d = 0; d < 3; ++d) work += f[d] * (p_.x[3 * i + d] - p_.x_prev[3 * i + d]);
     ix += f[0] * dt;
     iy += f[1] * dt;
     iz += f[2] * dt;
   }
-  ledger_.external += work;
-  ledger_.external_impulse[0] += ix;
-  ledger_.external_impulse[1] += iy;
-  ledger_.external_impulse[2] += iz;
-  std::copy(p_.f_ext.begin(), p_.f_ext.end(), f_ext_old_.begin());
+  st_.ledger.external += work;
+  st_.ledger.external_impulse[0] += ix;
+  st_.ledger.external_impulse[1] += iy;
+  st_.ledger.external_impulse[2] += iz;
+  std::copy(p_.f_ext.begin(), p_.f_ext.end(), st_.f_ext_old.begin());
 }
 
 void ExplicitSolver::compute_forces(double dt, double dt_next, bool internal) {
@@ -323,10 +323,10 @@ void ExplicitSolver::compute_forces(double dt, double dt_next, bool internal) {
   for (const Wall& w : walls_)  // supports over part of the body, one wall after the other
     for (const std::int32_t j : w.particles)
       wall_total += wall_force(w, static_cast<std::size_t>(j), p_.f_ext.data() + 3 * static_cast<std::size_t>(j));
-  wall_force_ = wall_total;
-  if (sphere_) {
-    contact_ = sphere_contact_.compute(*sphere_, p_, dt, dt_next, p_.f_contact.data());
-    sphere_->force = contact_.force_on_sphere;
+  st_.wall_force_N = wall_total;
+  if (st_.sphere) {
+    st_.contact = sphere_contact_.compute(*st_.sphere, p_, dt, dt_next, p_.f_contact.data());
+    st_.sphere->force = st_.contact.force_on_sphere;
   }
   // Prescribed velocities: the reaction cancels every other force (constant velocity, a = 0), so the
   // external force on such a particle is -f_int.
@@ -351,20 +351,20 @@ void ExplicitSolver::book_contact_work(double h) {
   double work = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : work) if (n >= kParallelMinParticles)
   for (std::int64_t k = 0; k < 3 * n; ++k) {
-    const double f0 = f_contact_old_[k], f1 = p_.f_contact[k];
+    const double f0 = st_.f_contact_old[k], f1 = p_.f_contact[k];
     if (f0 == 0.0 && f1 == 0.0) continue;
     const double v1 = p_.v[k], v_half = v1 - 0.5 * h * p_.a[k], v0 = v_half - 0.5 * h * a0[k];
     work += 0.25 * h * (f0 * (v0 + v_half) + f1 * (v_half + v1));
   }
-  const RigidSphere& s = *sphere_;
+  const RigidSphere& s = *st_.sphere;
   for (int d = 0; d < 3; ++d) {
     const double v1 = s.v[d], v_half = v1 - 0.5 * h * s.force[d] / s.mass_kg;
-    const double v0 = v_half - 0.5 * h * sphere_force_old_[d] / s.mass_kg;
-    work += 0.25 * h * (sphere_force_old_[d] * (v0 + v_half) + s.force[d] * (v_half + v1));
+    const double v0 = v_half - 0.5 * h * st_.sphere_force_old[d] / s.mass_kg;
+    work += 0.25 * h * (st_.sphere_force_old[d] * (v0 + v_half) + s.force[d] * (v_half + v1));
   }
-  ledger_.contact -= work;  // the energy the contact takes
-  std::copy(p_.f_contact.begin(), p_.f_contact.end(), f_contact_old_.begin());
-  sphere_force_old_ = s.force;
+  st_.ledger.contact -= work;  // the energy the contact takes
+  std::copy(p_.f_contact.begin(), p_.f_contact.end(), st_.f_contact_old.begin());
+  st_.sphere_force_old = s.force;
 }
 
 void ExplicitSolver::update_momentum_and_kinetic() {
@@ -378,17 +378,17 @@ void ExplicitSolver::update_momentum_and_kinetic() {
     py += p_.mass[i] * v[1];
     pz += p_.mass[i] * v[2];
   }
-  if (sphere_) {
-    const RigidSphere& s = *sphere_;
-    ledger_.kinetic_sphere = s.kinetic_energy();
-    ledger_.momentum_sphere = {s.mass_kg * s.v[0], s.mass_kg * s.v[1], s.mass_kg * s.v[2]};
-    ke += ledger_.kinetic_sphere;
-    px += ledger_.momentum_sphere[0];
-    py += ledger_.momentum_sphere[1];
-    pz += ledger_.momentum_sphere[2];
+  if (st_.sphere) {
+    const RigidSphere& s = *st_.sphere;
+    st_.ledger.kinetic_sphere = s.kinetic_energy();
+    st_.ledger.momentum_sphere = {s.mass_kg * s.v[0], s.mass_kg * s.v[1], s.mass_kg * s.v[2]};
+    ke += st_.ledger.kinetic_sphere;
+    px += st_.ledger.momentum_sphere[0];
+    py += st_.ledger.momentum_sphere[1];
+    pz += st_.ledger.momentum_sphere[2];
   }
-  ledger_.kinetic = ke;
-  ledger_.momentum = {px, py, pz};
+  st_.ledger.kinetic = ke;
+  st_.ledger.momentum = {px, py, pz};
   update_material_books();
 }
 
@@ -410,12 +410,12 @@ void ExplicitSolver::update_material_books() {
         }
       },
       material_);
-  ledger_.material_stored = stored;
-  ledger_.material_dissipated = ledger_.internal - ledger_.stabilization - stored;
-  ledger_.plastic = plastic;
-  ledger_.crushing = crushing;
-  ledger_.opening = opening;
-  ledger_.stabilization_stored = stab;
+  st_.ledger.material_stored = stored;
+  st_.ledger.material_dissipated = st_.ledger.internal - st_.ledger.stabilization - stored;
+  st_.ledger.plastic = plastic;
+  st_.ledger.crushing = crushing;
+  st_.ledger.opening = opening;
+  st_.ledger.stabilization_stored = stab;
 }
 
 double ExplicitSolver::stabilization_energy(const Moduli& mod, std::int64_t i) const {
@@ -440,14 +440,14 @@ double ExplicitSolver::dissipated_density(std::size_t i) const {
 
 StepFailure ExplicitSolver::attempt(double h) {
   inverted_ = -1;
-  if (sphere_)  // first half kick of the sphere, with the particles' (inside velocity_verlet_step)
-    for (int d = 0; d < 3; ++d) sphere_->v[d] += 0.5 * h * sphere_->force[d] / sphere_->mass_kg;
+  if (st_.sphere)  // first half kick of the sphere, with the particles' (inside velocity_verlet_step)
+    for (int d = 0; d < 3; ++d) st_.sphere->v[d] += 0.5 * h * st_.sphere->force[d] / st_.sphere->mass_kg;
   velocity_verlet_step(*this, h);
-  if (sphere_) {  // second half kick, with the force of the new configuration
-    for (int d = 0; d < 3; ++d) sphere_->v[d] += 0.5 * h * sphere_->force[d] / sphere_->mass_kg;
+  if (st_.sphere) {  // second half kick, with the force of the new configuration
+    for (int d = 0; d < 3; ++d) st_.sphere->v[d] += 0.5 * h * st_.sphere->force[d] / st_.sphere->mass_kg;
     book_contact_work(h);
   }
-  time_ += h;
+  st_.time_s += h;
   update_momentum_and_kinetic();
 
   failure_ = FailureReport{};
@@ -455,17 +455,17 @@ StepFailure ExplicitSolver::attempt(double h) {
   StepFailure kind = StepFailure::None;
   if (particle >= 0) {
     kind = StepFailure::NonFinite;
-  } else if (sphere_ && !(std::isfinite(sphere_->x[0] + sphere_->x[1] + sphere_->x[2] + sphere_->v[0] +
-                                        sphere_->v[1] + sphere_->v[2]))) {
+  } else if (st_.sphere && !(std::isfinite(st_.sphere->x[0] + st_.sphere->x[1] + st_.sphere->x[2] + st_.sphere->v[0] +
+                                        st_.sphere->v[1] + st_.sphere->v[2]))) {
     kind = StepFailure::NonFinite;
   } else if (inverted_ >= 0) {
     kind = StepFailure::InvertedVolume;
     particle = inverted_;
   } else if (domain_is_guard() && (particle = first_outside(p_, domain_)) >= 0) {
     kind = StepFailure::OutOfDomain;
-  } else if (options_.energy_error_limit > 0 && energy_error_ratio(ledger_) > options_.energy_error_limit) {
+  } else if (options_.energy_error_limit > 0 && energy_error_ratio(st_.ledger) > options_.energy_error_limit) {
     kind = StepFailure::EnergyBalance;
-    failure_.energy_error = energy_error_ratio(ledger_);
+    failure_.energy_error = energy_error_ratio(st_.ledger);
     particle = most_kinetic_particle(p_);  // where the instability shows first
   }
   if (kind != StepFailure::None) {
@@ -479,9 +479,9 @@ StepFailure ExplicitSolver::attempt(double h) {
       }
       failure_.volume_m3 = p_.volume[i];
       failure_.volume0_m3 = p_.volume0[i];
-    } else if (sphere_) {
-      failure_.x = sphere_->x;
-      failure_.v = sphere_->v;
+    } else if (st_.sphere) {
+      failure_.x = st_.sphere->x;
+      failure_.v = st_.sphere->v;
     }
   }
   return kind;
@@ -495,7 +495,7 @@ bool ExplicitSolver::step() {
     failure_.kind = StepFailure::StepCollapse;
     failure_.time_s = time();
     failure_.dt_s = h;
-    failure_.step = steps_ + 1;
+    failure_.step = counters_.steps + 1;
     return false;
   }
   save_state();
@@ -504,11 +504,11 @@ bool ExplicitSolver::step() {
     StepFailure kind = attempt(h);
     // A collapsed stable step is redone first: the energy error of the too-long attempt is its symptom.
     const bool redo_allowed = kind == StepFailure::None || kind == StepFailure::EnergyBalance;
-    if (redo_allowed && guard && dt_ < options_.dt_collapse_fraction * h) {
+    if (redo_allowed && guard && st_.dt_s < options_.dt_collapse_fraction * h) {
       if (repeat < options_.max_step_repeats) {
-        const double smaller = dt_;
+        const double smaller = st_.dt_s;
         restore_state();
-        ++repeats_;
+        ++counters_.repeats;
         h = smaller;
         continue;
       }
@@ -517,16 +517,16 @@ bool ExplicitSolver::step() {
       failure_.kind = kind;
     }
     if (kind != StepFailure::None) {
-      failure_.time_s = saved_.time;
+      failure_.time_s = saved_.state.time_s;
       failure_.dt_s = h;
-      failure_.step = steps_ + 1;
+      failure_.step = counters_.steps + 1;
       restore_state();
       return false;
     }
     break;
   }
-  ++steps_;
-  last_dt_ = h;
+  ++counters_.steps;
+  counters_.last_dt_s = h;
   return true;
 }
 
@@ -574,15 +574,7 @@ void ExplicitSolver::save_state() {
   if (saved_.p.n != p_.n || saved_.p.x.size() != p_.x.size()) saved_.p = p_;  // sizes it (initialize())
   else copy_evolving_state(p_, saved_.p);
   if (saved_.material) *saved_.material = material_; else saved_.material.emplace(material_);
-  saved_.f_ext_old = f_ext_old_;
-  saved_.f_contact_old = f_contact_old_;
-  saved_.sphere = sphere_;
-  saved_.sphere_force_old = sphere_force_old_;
-  saved_.contact = contact_;
-  saved_.ledger = ledger_;
-  saved_.time = time_;
-  saved_.dt = dt_;
-  saved_.wall_force = wall_force_;
+  saved_.state = st_;  // same sizes after the first: the vectors' copies do not allocate
 }
 
 // The shape cache is not restored: every step rebuilds it before using it, and EndpointAverage, which
@@ -591,15 +583,7 @@ void ExplicitSolver::restore_state() {
   shapes_at_x_ = false;
   copy_evolving_state(saved_.p, p_);
   material_ = *saved_.material;
-  f_ext_old_ = saved_.f_ext_old;
-  f_contact_old_ = saved_.f_contact_old;
-  sphere_ = saved_.sphere;
-  sphere_force_old_ = saved_.sphere_force_old;
-  contact_ = saved_.contact;
-  ledger_ = saved_.ledger;
-  time_ = saved_.time;
-  dt_ = saved_.dt;
-  wall_force_ = saved_.wall_force;
+  st_ = saved_.state;
 }
 
 SolverCheckpoint ExplicitSolver::checkpoint() const {
@@ -617,18 +601,8 @@ SolverCheckpoint ExplicitSolver::checkpoint() const {
         c.material_states.assign(bytes, bytes + block.state.size() * sizeof(State));
       },
       material_);
-  c.f_ext_old = f_ext_old_;
-  c.f_contact_old = f_contact_old_;
-  c.sphere = sphere_;
-  c.sphere_force_old = sphere_force_old_;
-  c.contact = contact_;
-  c.ledger = ledger_;
-  c.time_s = time_;
-  c.dt_s = dt_;
-  c.wall_force_N = wall_force_;
-  c.last_dt_s = last_dt_;
-  c.steps = steps_;
-  c.repeats = repeats_;
+  c.state = st_;
+  c.counters = counters_;
   return c;
 }
 
@@ -649,26 +623,16 @@ void ExplicitSolver::resume(const SolverCheckpoint& c) {
       [](const auto& block) { return block.state.size() * sizeof(typename std::decay_t<decltype(block.state)>::value_type); },
       material_);
   check_size("material state bytes", c.material_states.size(), state_bytes);
-  check_size("f_ext_old", c.f_ext_old.size(), f_ext_old_.size());
-  check_size("f_contact_old", c.f_contact_old.size(), f_contact_old_.size());
-  if (c.sphere.has_value() != sphere_.has_value())
+  check_size("f_ext_old", c.state.f_ext_old.size(), st_.f_ext_old.size());
+  check_size("f_contact_old", c.state.f_contact_old.size(), st_.f_contact_old.size());
+  if (c.state.sphere.has_value() != st_.sphere.has_value())
     throw std::invalid_argument("ExplicitSolver::resume: the checkpoint and the solver disagree on the sphere");
   // Everything checked: now the state is replaced.
   for (std::size_t k = 0; k < fields.size(); ++k) p_.*kEvolvingFields[k].field = *fields[k];
   std::visit([&](auto& block) { std::memcpy(static_cast<void*>(block.state.data()), c.material_states.data(), state_bytes); },
              material_);
-  f_ext_old_ = c.f_ext_old;
-  f_contact_old_ = c.f_contact_old;
-  sphere_ = c.sphere;
-  sphere_force_old_ = c.sphere_force_old;
-  contact_ = c.contact;
-  ledger_ = c.ledger;
-  time_ = c.time_s;
-  dt_ = c.dt_s;
-  wall_force_ = c.wall_force_N;
-  last_dt_ = c.last_dt_s;
-  steps_ = c.steps;
-  repeats_ = c.repeats;
+  st_ = c.state;
+  counters_ = c.counters;
   drop_shape_cache();
   save_state();
 }

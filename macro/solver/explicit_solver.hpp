@@ -104,19 +104,30 @@ struct SolverOptions {
   double domain_margin = 1.0;
 };
 
-// What a run needs to go on bit for bit after a successful step: the evolving state save_state()
-// keeps (the particle fields a step reads back, the material states, the old forces, the sphere, the
-// contact's last evaluation, the ledger) and the clocks. Written and read by macro/app/checkpoint.hpp.
+// What a step evolves besides the particle fields and the material states, listed once: a failed
+// attempt restores it (ExplicitSolver::restore_state), a checkpoint carries it.
+struct StepState {
+  std::vector<double> f_ext_old, f_contact_old;  // the last step's forces (the trapezoid rule's start)
+  std::optional<RigidSphere> sphere;
+  Vec3 sphere_force_old{};
+  SphereContactSums contact;  // the contact's last evaluation
+  EnergyLedger ledger;
+  double time_s = 0.0, dt_s = 0.0, wall_force_N = 0.0;  // dt_s: the stable step for the next step
+};
+
+// The run's counters: not undone by a repeated step (they count it).
+struct StepCounters {
+  double last_dt_s = 0.0;  // the step actually taken by the last step()
+  std::int64_t steps = 0, repeats = 0;
+};
+
+// What a run needs to go on bit for bit after a successful step: the particle fields a step reads back,
+// the material states, the step's state and the counters. Written and read by macro/app/checkpoint.hpp.
 struct SolverCheckpoint {
   std::vector<std::pair<std::string, std::vector<double>>> particle_fields;  // name, values
   std::vector<std::uint8_t> material_states;  // the law's states, byte for byte
-  std::vector<double> f_ext_old, f_contact_old;
-  std::optional<RigidSphere> sphere;
-  Vec3 sphere_force_old{};
-  SphereContactSums contact;
-  EnergyLedger ledger;
-  double time_s = 0.0, dt_s = 0.0, wall_force_N = 0.0, last_dt_s = 0.0;
-  std::int64_t steps = 0, repeats = 0;
+  StepState state;
+  StepCounters counters;
 };
 
 class ExplicitSolver {
@@ -147,28 +158,28 @@ class ExplicitSolver {
   void resume(const SolverCheckpoint& checkpoint);
   void drop_shape_cache();
 
-  double time() const { return time_; }
-  double dt() const { return options_.fixed_dt_s > 0 ? options_.fixed_dt_s : dt_; }
-  double stable_dt() const { return dt_; }
-  std::int64_t steps() const { return steps_; }
-  const EnergyLedger& ledger() const { return ledger_; }
+  double time() const { return st_.time_s; }
+  double dt() const { return options_.fixed_dt_s > 0 ? options_.fixed_dt_s : st_.dt_s; }
+  double stable_dt() const { return st_.dt_s; }
+  std::int64_t steps() const { return counters_.steps; }
+  const EnergyLedger& ledger() const { return st_.ledger; }
   const Particles& particles() const { return p_; }
   Particles& particles() { return p_; }
   const MaterialSet& material() const { return material_; }
   // At the current configuration after a successful step (after a failed one: at the failed attempt's).
   const ShapeCache& shapes() const { return shapes_; }
   const SolverOptions& options() const { return options_; }
-  double wall_force_magnitude() const { return wall_force_; }  // total normal wall force, last step
+  double wall_force_magnitude() const { return st_.wall_force_N; }  // total normal wall force, last step
   std::int64_t failure_particle() const { return failure_.particle; }
   const FailureReport& failure() const { return failure_; }
-  std::int64_t step_repeats() const { return repeats_; }  // repeats by the step-collapse guard, whole run
-  double last_dt() const { return last_dt_; }             // the step actually taken by the last step()
+  std::int64_t step_repeats() const { return counters_.repeats; }  // repeats by the step-collapse guard, whole run
+  double last_dt() const { return counters_.last_dt_s; }          // the step actually taken by the last step()
   const Region& domain() const { return domain_; }
   // Whether a particle beyond the domain fails the step (SolverOptions::domain).
   bool domain_is_guard() const { return options_.energy_error_limit <= 0.0; }
-  bool has_sphere() const { return sphere_.has_value(); }
-  const RigidSphere& sphere() const { return *sphere_; }  // requires has_sphere()
-  const SphereContactSums& contact() const { return contact_; }  // last force evaluation
+  bool has_sphere() const { return st_.sphere.has_value(); }
+  const RigidSphere& sphere() const { return *st_.sphere; }  // requires has_sphere()
+  const SphereContactSums& contact() const { return st_.contact; }  // last force evaluation
   // Energy particle i has dissipated so far per unit reference volume (J/m^3): its stress work minus
   // the energy its law holds (EnergyLedger::material_dissipated per particle).
   double dissipated_density(std::size_t i) const;
@@ -216,15 +227,11 @@ class ExplicitSolver {
   // EndpointAverage: L and (NSNI) dL/dx with the start-of-step gradients; sized once in the constructor.
   std::vector<double> vel_grad_start_, vel_grad_grad_start_;
   InternalForce force_;
-  std::vector<double> f_ext_old_, f_contact_old_;
-  std::optional<RigidSphere> sphere_;
-  Vec3 sphere_force_old_{};
   SphereContact sphere_contact_;  // the contact model and its scratch, set up at initialize()
-  SphereContactSums contact_;
   Region domain_;
-  EnergyLedger ledger_;
-  double time_ = 0.0, dt_ = 0.0, wall_force_ = 0.0, last_dt_ = 0.0;
-  std::int64_t steps_ = 0, repeats_ = 0, inverted_ = -1;
+  StepState st_;
+  StepCounters counters_;
+  std::int64_t inverted_ = -1;
   bool initialized_ = false;
   FailureReport failure_;
   // The last good state, saved at the start of every step (same-size copies: no allocation). Of the
@@ -232,12 +239,7 @@ class ExplicitSolver {
   struct Saved {
     Particles p;
     std::optional<MaterialSet> material;
-    std::vector<double> f_ext_old, f_contact_old;
-    std::optional<RigidSphere> sphere;
-    Vec3 sphere_force_old{};
-    SphereContactSums contact;
-    EnergyLedger ledger;
-    double time = 0.0, dt = 0.0, wall_force = 0.0;
+    StepState state;
   } saved_;
 };
 

@@ -88,10 +88,10 @@ TEST_F(MacroCheckpoint, ASolverResumedFromACheckpointFileGoesOnBitForBit) {
     EXPECT_TRUE(same_bits(end_a.particle_fields[f].second, end_b.particle_fields[f].second))
         << end_a.particle_fields[f].first;
   EXPECT_TRUE(same_bits(end_a.material_states, end_b.material_states));
-  EXPECT_EQ(std::memcmp(&end_a.ledger, &end_b.ledger, sizeof(EnergyLedger)), 0);
-  EXPECT_EQ(std::memcmp(&*end_a.sphere, &*end_b.sphere, sizeof(RigidSphere)), 0);
-  EXPECT_EQ(end_a.time_s, end_b.time_s);
-  EXPECT_EQ(end_b.steps, 120);
+  EXPECT_EQ(std::memcmp(&end_a.state.ledger, &end_b.state.ledger, sizeof(EnergyLedger)), 0);
+  EXPECT_EQ(std::memcmp(&*end_a.state.sphere, &*end_b.state.sphere, sizeof(RigidSphere)), 0);
+  EXPECT_EQ(end_a.state.time_s, end_b.state.time_s);
+  EXPECT_EQ(end_b.counters.steps, 120);
   // The sphere has hit the disc by then: the state resumed is a loaded one.
   EXPECT_GT(a.ledger().internal, 1.0);
 }
@@ -273,21 +273,21 @@ TEST_F(MacroCheckpoint, ACheckpointWhoseClockIsOutsideTheRunsBoundsIsRefusedNami
     return test::error_of<InputError>([&] { run_macro(args); });
   };
   const std::string at = file.string() + ": ";
-  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.time_s = -1.0; }),
+  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.state.time_s = -1.0; }),
             at + "solver/clock time_s = -1: not a time >= 0 s: the checkpoint is corrupt or was edited");
-  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.time_s = 1e300; }),
+  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.state.time_s = 1e300; }),
             at + "solver/clock time_s = 1e+300 s: at or past run.end_time_s = 5e-07 s: a restart carries a run on to "
                  "a later end time");
-  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.steps = -1000; }),
+  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.counters.steps = -1000; }),
             at + "solver/counters steps = -1000: outside [0, run.max_steps = 1000000]: the checkpoint is corrupt or was "
                  "edited (a run that really took more steps goes on with a larger run.max_steps)");
-  EXPECT_THAT(refused([](SolverCheckpoint& s) { s.steps = std::int64_t{1} << 62; }),
+  EXPECT_THAT(refused([](SolverCheckpoint& s) { s.counters.steps = std::int64_t{1} << 62; }),
               ::testing::StartsWith(at + "solver/counters steps = 4611686018427387904: outside [0, run.max_steps"));
-  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.dt_s = 0.0; }),
+  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.state.dt_s = 0.0; }),
             at + "solver/clock dt_s = 0: not a step > 0 s: the checkpoint is corrupt or was edited");
-  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.dt_s = std::nan(""); }),
+  EXPECT_EQ(refused([](SolverCheckpoint& s) { s.state.dt_s = std::nan(""); }),
             at + "solver/clock dt_s = nan: not a step > 0 s: the checkpoint is corrupt or was edited");
-  EXPECT_THAT(refused([](SolverCheckpoint& s) { s.steps = 0; }),
+  EXPECT_THAT(refused([](SolverCheckpoint& s) { s.counters.steps = 0; }),
               ::testing::HasSubstr(": a run is at time 0 exactly at step 0"));
   // The intact values restart.
   write_checkpoint(file, intact);
