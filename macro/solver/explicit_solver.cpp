@@ -339,6 +339,31 @@ void ExplicitSolver::compute_forces(double dt, double dt_next, bool internal) {
       p_.a[3 * i + d] = (p_.f_int[3 * i + d] + p_.f_ext[3 * i + d] + p_.f_contact[3 * i + d]) / p_.mass[i];
 }
 
+namespace {
+// The particle fields a step changes and the next step reads before it rewrites them. Not copied:
+// the constants of the step loop (mass, volume0, spacing, support) and the per-step scratch each
+// step recomputes before use (x_prev, x_mid, vel_grad, vel_grad_grad).
+struct EvolvingField {
+  const char* name;
+  std::vector<double> Particles::*field;
+};
+constexpr EvolvingField kEvolvingFields[] = {
+    {"x", &Particles::x},           {"v", &Particles::v},
+    {"a", &Particles::a},           {"f_int", &Particles::f_int},
+    {"f_ext", &Particles::f_ext},   {"f_contact", &Particles::f_contact},
+    {"volume", &Particles::volume}, {"density", &Particles::density},
+    {"stress", &Particles::stress}, {"bulk_q", &Particles::bulk_q},
+    {"wave_speed", &Particles::wave_speed}, {"work", &Particles::work},
+    {"stress_grad", &Particles::stress_grad}, {"stress_grad_nominal", &Particles::stress_grad_nominal}};
+
+// Where a field is in kEvolvingFields (and so in the saved copy).
+constexpr std::size_t evolving_index(std::vector<double> Particles::*field) {
+  std::size_t k = 0;
+  while (kEvolvingFields[k].field != field) ++k;
+  return k;
+}
+}  // namespace
+
 // The work of the contact forces over the step, kick by kick: a half kick dt/2 f changes a body's
 // kinetic energy by dt/2 f . (v_before + v_after) / 2 of its own velocities, so summed over the two
 // half kicks this is the kinetic energy the contact gave, exactly, however impulsive its forces (the
@@ -347,7 +372,8 @@ void ExplicitSolver::compute_forces(double dt, double dt_next, bool internal) {
 // velocities and the start- and end-of-step accelerations.
 void ExplicitSolver::book_contact_work(double h) {
   const std::int64_t n = static_cast<std::int64_t>(p_.n);
-  const double* a0 = saved_.p.a.data();  // the first half kick's accelerations (saved at the step's start)
+  // The first half kick's accelerations (saved at the step's start).
+  const double* a0 = saved_.particle_fields[evolving_index(&Particles::a)].data();
   double work = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : work) if (n >= kParallelMinParticles)
   for (std::int64_t k = 0; k < 3 * n; ++k) {
@@ -543,25 +569,7 @@ void copy_same_size(const std::vector<double>& from, std::vector<double>& to) {
   }
 }
 
-// The particle fields a step changes and the next step reads before it rewrites them. Not copied:
-// the constants of the step loop (mass, volume0, spacing, support) and the per-step scratch each
-// step recomputes before use (x_prev, x_mid, vel_grad, vel_grad_grad).
-struct EvolvingField {
-  const char* name;
-  std::vector<double> Particles::*field;
-};
-constexpr EvolvingField kEvolvingFields[] = {
-    {"x", &Particles::x},           {"v", &Particles::v},
-    {"a", &Particles::a},           {"f_int", &Particles::f_int},
-    {"f_ext", &Particles::f_ext},   {"f_contact", &Particles::f_contact},
-    {"volume", &Particles::volume}, {"density", &Particles::density},
-    {"stress", &Particles::stress}, {"bulk_q", &Particles::bulk_q},
-    {"wave_speed", &Particles::wave_speed}, {"work", &Particles::work},
-    {"stress_grad", &Particles::stress_grad}, {"stress_grad_nominal", &Particles::stress_grad_nominal}};
 
-void copy_evolving_state(const Particles& from, Particles& to) {
-  for (const EvolvingField& f : kEvolvingFields) copy_same_size(from.*f.field, to.*f.field);
-}
 
 void check_size(const char* what, std::size_t got, std::size_t expected) {
   if (got != expected)
@@ -571,8 +579,13 @@ void check_size(const char* what, std::size_t got, std::size_t expected) {
 }  // namespace
 
 void ExplicitSolver::save_state() {
-  if (saved_.p.n != p_.n || saved_.p.x.size() != p_.x.size()) saved_.p = p_;  // sizes it (initialize())
-  else copy_evolving_state(p_, saved_.p);
+  saved_.particle_fields.resize(std::size(kEvolvingFields));
+  for (std::size_t k = 0; k < std::size(kEvolvingFields); ++k) {
+    const std::vector<double>& field = p_.*kEvolvingFields[k].field;
+    std::vector<double>& copy = saved_.particle_fields[k];
+    if (copy.size() != field.size()) copy = field;  // sizes it (initialize())
+    else copy_same_size(field, copy);
+  }
   if (saved_.material) *saved_.material = material_; else saved_.material.emplace(material_);
   saved_.state = st_;  // same sizes after the first: the vectors' copies do not allocate
 }
@@ -581,7 +594,8 @@ void ExplicitSolver::save_state() {
 // reads it first, rebuilds it at the restored positions (shapes_at_x_).
 void ExplicitSolver::restore_state() {
   shapes_at_x_ = false;
-  copy_evolving_state(saved_.p, p_);
+  for (std::size_t k = 0; k < std::size(kEvolvingFields); ++k)
+    copy_same_size(saved_.particle_fields[k], p_.*kEvolvingFields[k].field);
   material_ = *saved_.material;
   st_ = saved_.state;
 }

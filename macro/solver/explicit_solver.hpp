@@ -235,9 +235,10 @@ class ExplicitSolver {
   bool initialized_ = false;
   FailureReport failure_;
   // The last good state, saved at the start of every step (same-size copies: no allocation). Of the
-  // particles only the fields a step changes and reads back are copied (explicit_solver.cpp).
+  // particles only the fields a step changes and reads back are kept (kEvolvingFields in
+  // explicit_solver.cpp, in its order): the rest is not worth its memory.
   struct Saved {
-    Particles p;
+    std::vector<std::vector<double>> particle_fields;
     std::optional<MaterialSet> material;
     StepState state;
   } saved_;
