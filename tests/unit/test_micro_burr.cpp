@@ -1,4 +1,4 @@
-// Burr XII sampler (micro/burr.hpp) against its analytic law. docs/specification.md's check values (mean 184.3 um,
+// Burr XII sampler (micro/geometry/burr.hpp) against its analytic law. docs/specification.md's check values (mean 184.3 um,
 // median 148.1 um) are statistics of the UNtruncated law (data/README.md), so the draws are compared
 // with them with truncation off; the truncated sampler (the one the cells use, at 1.3 mm) is compared
 // with the truncated law's own statistics, computed here by an independent quadrature of x f(x).

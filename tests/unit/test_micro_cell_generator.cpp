@@ -1,4 +1,4 @@
-// Cell generator (micro/cell_generator.hpp): every generated cell meets the porosity band, keeps the
+// Cell generator (micro/geometry/cell_generator.hpp): every generated cell meets the porosity band, keeps the
 // minimum ligament between pores and to the edges, places pores largest first, roots the crack seeds
 // where docs/physics.md says, and is a pure function of its seed. Checked with plain arithmetic,
 // independently of the CGAL predicates the generator uses.

@@ -1,4 +1,4 @@
-// cell.json and the cell configuration (micro/cell_io.hpp, micro/cell_settings.hpp): the geometry
+// cell.json and the cell configuration (micro/app/cell_io.hpp, micro/app/cell_settings.hpp): the geometry
 // survives a round trip, the same settings and seed give byte-identical files apart from the
 // provenance date, and bad input names the file, key and reason.
 #include <string>

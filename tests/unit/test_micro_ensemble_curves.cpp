@@ -1,4 +1,4 @@
-// Ensemble statistics of cell curves (micro/ensemble_curves.hpp): hand-computable means and spreads,
+// Ensemble statistics of cell curves (micro/app/ensemble_curves.hpp): hand-computable means and spreads,
 // the nominal strength, and the conversion to the ensemble.h5 contract read back by the calibrate reader.
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// The drivers of `uhpc-micro run` and `uhpc-micro ensemble` (micro/run_commands.hpp) with test
+// The drivers of `uhpc-micro run` and `uhpc-micro ensemble` (micro/app/run_commands.hpp) with test
 // analyzers: the closed-form cohesive bar (tests/support/cohesive_bar.hpp) on real generated cells, one
 // that throws and one that returns Failed. Files written, exit codes and messages, resume, failures
 // recorded, ensemble.h5 readable by the calibrate reader.
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "analysis/cell_analysis_settings.hpp"
+#include "cell_analysis_settings.hpp"
 #include "cohesive_bar.hpp"
 #include "run_commands.hpp"
 #include "test_support.hpp"

@@ -1,4 +1,4 @@
-// Discretization of the porous cell (micro/cell_mesh.hpp) with gmsh: the triangles cover the porous
+// Discretization of the porous cell (micro/geometry/cell_mesh.hpp) with gmsh: the triangles cover the porous
 // area (square minus disks) to within 0.5 %, every pore boundary (the smallest, 77 um, included) has
 // at least 8 nodes, boundary nodes are classified on the right pore or edge, each node has its own
 // spacing, and the mesh is refined at pores and seeds as the size field asks.

@@ -1,7 +1,7 @@
 #include "fracture_analyzer.hpp"
 
-#include "analysis/cell_analysis.hpp"
-#include "analysis/cell_analysis_settings.hpp"
+#include "cell_analysis.hpp"
+#include "cell_analysis_settings.hpp"
 #include "uhpc/errors.hpp"
 
 namespace uhpc::micro {
