@@ -35,7 +35,7 @@ import json
 import pathlib
 import sys
 
-from carried_shot import Shot, end_time_and_sets
+from carried_shot import Shot, add_shot_arguments, end_time_and_sets
 
 
 def failed_run(runs, velocity, out, exit_code):
@@ -83,11 +83,7 @@ def next_velocity(lo, hi, failed):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--macro", required=True)
-    ap.add_argument("--launch", default="", help="launcher prefix of each run, e.g. \"srun -N1 -n1 -c2 --exclusive\"")
-    ap.add_argument("--config", required=True)
-    ap.add_argument("--sdel")
-    ap.add_argument("--set", action="append", default=[])
+    add_shot_arguments(ap)
     ap.add_argument("--low", type=float, required=True)
     ap.add_argument("--high", type=float, required=True)
     ap.add_argument("--width", type=float, default=10.0)

@@ -148,14 +148,19 @@ def end_time_and_sets(prog, sets, end_time, config):
     return end_time, rest
 
 
-def main():
-    prog = "carried_shot.py"
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def add_shot_arguments(ap):
+    """The arguments that say how a study runs its shots (a Shot's, but the end times)."""
     ap.add_argument("--macro", required=True)
     ap.add_argument("--launch", default="", help="launcher prefix of each run, e.g. \"srun -N1 -n1 -c2 --exclusive\"")
     ap.add_argument("--config", required=True)
     ap.add_argument("--sdel")
     ap.add_argument("--set", action="append", default=[])
+
+
+def main():
+    prog = "carried_shot.py"
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_shot_arguments(ap)
     ap.add_argument("--velocity", required=True, help="m/s, passed to uhpc-macro as written")
     ap.add_argument("--end-time", type=float)
     ap.add_argument("--max-end-time", type=float, help="an undecided run is carried on up to it (default: the end time)")
