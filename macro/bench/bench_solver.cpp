@@ -20,7 +20,9 @@
 //    particle; the others searched only the fast ones), in_contact, peak_rss_MiB. peak_rss_MiB is the
 //    process's peak resident set so far (getrusage ru_maxrss after the timed steps), not the
 //    configuration's own: it includes every benchmark run before it, so for a clean figure run one
-//    configuration alone, e.g. --benchmark_filter='BM_PaperDisc100/threads:2'.
+//    configuration alone, e.g. --benchmark_filter='BM_PaperDisc100/threads:2'. heap_B_per_particle is
+//    the configuration's own: the heap the shot holds after its timed steps (body, particles, material,
+//    solver), per particle (uhpc::heap_in_use_bytes; -1 where the C library does not tell).
 //  BM_PaperDiscModels100: the same disc and shipped solver settings (lazy rows 3e-4) with the law and
 //    the contact as arguments: law 0 elastic stand-in, 1 AFC with the paper's SDEL (eq. 21's split:
 //    the NSNI gradients are kept effective and split for the forces); contact 0 kinematic (the
@@ -85,6 +87,7 @@ BENCHMARK(BM_ElasticStep)
 // settle the buffers, then the timed steps.
 void run_paper_disc(benchmark::State& state, const SolverOptions& options,
                     const std::function<MaterialSet(std::size_t)>& make_material, SphereContactModel contact) {
+  const double heap0 = uhpc::heap_in_use_bytes();
   DiscSpec spec;
   spec.radius_m = 0.2032;
   spec.thickness_m = 0.03175;
@@ -111,6 +114,10 @@ void run_paper_disc(benchmark::State& state, const SolverOptions& options,
   for (auto _ : state)
     if (!solver->step()) state.SkipWithError("step failed");
   state.counters["peak_rss_MiB"] = uhpc::peak_memory_MiB();  // the whole process so far
+  // What the shot holds after its steps (body, particles, material, solver with its shape table and
+  // lists), per particle: this configuration's own, unlike the peak resident set.
+  state.counters["heap_B_per_particle"] =
+      heap0 < 0.0 ? -1.0 : (uhpc::heap_in_use_bytes() - heap0) / static_cast<double>(body.size());
   // RK rebuilds in the timed steps that searched the neighbours afresh / reused the Verlet candidates.
   state.counters["searches"] = static_cast<double>(solver->shapes().searches - searches0);
   state.counters["reuses"] = static_cast<double>(solver->shapes().reuses - reuses0);
