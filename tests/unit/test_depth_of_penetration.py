@@ -3,19 +3,10 @@
 12.7 mm sphere in the paper's UHPC (f'c 193.6 MPa, rho 2555.7 kg/m^3), and the crater and tunnel forms
 meeting at the crater's depth 4a (the force is continuous there, so must the depth be)."""
 import math
-import pathlib
-import sys
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "pipelines"))
+from pipeline_checks import check, finish  # puts pipelines/ on the path first
 import depth_of_penetration as dop  # noqa: E402
 
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
 
 
 m, a, rho, fc = 0.009071, 0.00635, 2555.7, 193.6e6
@@ -36,5 +27,4 @@ above = dop.forrestal_crater_tunnel(v_edge * (1 + 1e-9), m, a, rho, fc)
 check(abs(below - 4 * a) < 1e-8 and abs(above - 4 * a) < 1e-8,
       f"continuous at the crater depth ({v_edge:.1f} m/s): {1e3 * below:.6f} / {1e3 * above:.6f} mm (4a = 25.4)")
 check(dop.forrestal_crater_tunnel(600.0, m, a, rho, fc) > 4 * a, "600 m/s reaches the tunnel")
-if failures:
-    sys.exit(1)
+finish()

@@ -4,21 +4,12 @@ least-squares answer worked by hand on data the model did not make (so the fit i
 itself); fit() on data made from its own model with known constants, which it must recover; and the flags
 that say when v_bl is only extrapolated (no run below it) or a free p ran to the end of its search, in the
 JSON and in the Markdown table."""
-import pathlib
-import sys
 
 import numpy as np
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "pipelines"))
+from pipeline_checks import check, finish  # puts pipelines/ on the path first
 import lambert_jonas as lj  # noqa: E402
 
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
 
 
 # The model by hand: 0.8 sqrt(500^2 - 450^2) = 0.8 sqrt(47500) = 174.35595774...; 0.75 sqrt(500^2 - 300^2)
@@ -72,5 +63,4 @@ check(h["p_at_search_edge"] and h["p"] < lj.P_SEARCH[0] + 0.01, f"p {h['p']:.2f}
 e = dict(f, p=lj.P_SEARCH[0], p_at_search_edge=True)
 check("(search edge)" in lj.fit_markdown({"runs": e}), "a p at the edge is marked in the table")
 
-print(f"{len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish()

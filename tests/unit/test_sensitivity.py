@@ -9,20 +9,12 @@ write the same bytes, other arguments over a design are refused.
 """
 import json
 import pathlib
-import sys
 import tempfile
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "pipelines"))
+from pipeline_checks import check, finish  # puts pipelines/ on the path first
 import openturns as ot  # noqa: E402
 import sensitivity  # noqa: E402
 
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
 
 
 ot.RandomGenerator.SetSeed(7)
@@ -59,4 +51,4 @@ with tempfile.TemporaryDirectory() as tmp:
     other = list(args)
     other[other.index("--seed") + 1] = "6"
     check(sensitivity.main(other) == 2, "another seed over the design is refused (exit 2)")
-sys.exit(1 if failures else 0)
+finish()
