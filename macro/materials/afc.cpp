@@ -62,6 +62,8 @@ AfcMaterial::AfcMaterial(const AfcParams& params) : p_(params), hydro_(params) {
           "rate_factor_floor must be finite and >= 0");
   require(std::isfinite(p.options.crack_band_reference_size_m) && p.options.crack_band_reference_size_m > 0,
           "crack_band_reference_size_m must be finite and > 0");
+  require(std::isfinite(p.options.crack_band_width_spacings) && p.options.crack_band_width_spacings >= 1,
+          "crack_band_width_spacings must be finite and >= 1");
   // The crushing curve must rise (a falling hydrostat has no sound speed) and stay below the unloading
   // lines (K_u >= K_e must bound its slope, else unloading would cross the loading curve).
   const double Ke = hydro_.elastic_bulk_modulus();
@@ -255,12 +257,12 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
       } else {
         // The cutoff coupling's crack band (afc_params.hpp): up to the reference's onset of tensile
         // yielding d+ is the reference SDEL of kappa (nothing is dissipated yet); past it d+ follows the
-        // tensile work per volume scaled by h / l_ref along the reference's own curve (and by 1 / DIF^2
+        // tensile work per volume scaled by n_b h / l_ref along the reference's own curve (and by 1 / DIF^2
         // with the tensile DIF: the lambda law stretches its curve and raises its cutoff by DIF, which
         // dissipates DIF^2 the energy), the work of the steps before (explicit: solving for this step's
         // own work at its fixed strain increment is unstable, a falling limit at fixed strain releases
         // several times what it releases on the equilibrium path, and substeps at fixed strain are too).
-        const double energy_scale = step.spacing_m / o.crack_band_reference_size_m / (st.tensile_dif * st.tensile_dif);
+        const double energy_scale = band_width(step.spacing_m) / o.crack_band_reference_size_m / (st.tensile_dif * st.tensile_dif);
         const double before_onset = std::min(sdel_damage(st.tensile_strain_max, o.crack_band_reference_size_m), band_.onset);
         st.d_plus = std::max(st.d_plus, std::max(before_onset, crack_band_damage(st.tensile_work * energy_scale)));
       }
@@ -329,13 +331,13 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   // is this step's: sigma_e grows with the strain up to e_e and is held at AFC's strength beyond, so
   // sigma_e(u) / sigma_e(kappa) = m(u) / e_e with m(u) = min(u, e_e), and the elastic part of the
   // point is (1 - d_ref(u)) m(u). The band's strain u = e_el + (kappa - e_el) h / l_ref is then the
-  // root of f(u) = u - (1 - r) (1 - d_ref(u)) m(u) - r kappa, r = h / l_ref, solved here rather than
+  // root of f(u) = u - (1 - r) (1 - d_ref(u)) m(u) - r kappa, r = n_b h / l_ref, solved here rather than
   // lagged by a step: the lag's fixed-point map is not a contraction on the steep part of the SDEL.
   // For r <= 1, f rises (f' >= r) from f(r kappa) <= 0 to f(kappa) >= 0: one root, by bisection. For
   // r > 1 the bracket is [kappa, r kappa] and a steep softening can have several roots (the point
   // snaps back: docs/physics.md section 4.4).
   if (split && crack_band_growing) {
-    const double kappa = st.tensile_strain_max, r = step.spacing_m / o.crack_band_reference_size_m;
+    const double kappa = st.tensile_strain_max, r = band_width(step.spacing_m) / o.crack_band_reference_size_m;
     const double e_e = effective_tensile_strain(st.effective_stress) / st.tensile_dif;
     const auto elastic = [&](double u) {
       return (1.0 - sdel_damage(u, o.crack_band_reference_size_m)) * std::min(u, e_e);

@@ -120,10 +120,12 @@ class AfcMaterial {
   // lambda = h / l_mac law (SdelRegularization::CrackBand evaluates it at h = l_ref).
   double sdel_damage(double kappa, double spacing_m) const;
   // SdelRegularization::CrackBand with the cutoff coupling: d+ of the reference curve at a tensile work per
-  // volume already scaled by h / l_ref (0 at and below 0, the onset's d+ just above, 1 past failure).
+  // volume already scaled by band_width(h) / l_ref (0 at and below 0, the onset's d+ just above, 1 past failure).
   double crack_band_damage(double scaled_tensile_work) const;
   // The onset of the reference curve: d+ of the reference at the peak of its uniaxial tension.
   double crack_band_onset() const { return band_.onset; }
+  // The width of the band a point of spacing h stands for (AfcOptions::crack_band_width_spacings).
+  double band_width(double spacing_m) const { return p_.options.crack_band_width_spacings * spacing_m; }
 
  private:
   // The principal-stress limit's return of the deviator s at pressure P (AfcOptions::principal_stress_limit).

@@ -47,6 +47,8 @@ AfcOptions afc_options_from_config(const uhpc::Config& c, AfcOptions o) {
                                 : SdelRegularization::CrackBand;
   if (c.has("crack_band_reference_size_m"))
     o.crack_band_reference_size_m = c.number("crack_band_reference_size_m", Range::positive());
+  if (c.has("crack_band_width_spacings"))
+    o.crack_band_width_spacings = c.number("crack_band_width_spacings", Range::closed(1.0, 8.0));
   if (c.has("tensile_damage"))
     o.tensile_damage = c.choice("tensile_damage", {"sdel", "off"}) == "off" ? TensileDamage::Off : TensileDamage::Sdel;
   if (c.has("wave_speed_from_unloading_modulus"))

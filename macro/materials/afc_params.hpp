@@ -146,6 +146,13 @@ struct AfcOptions {
   // shipped cases (1.5-4.5 mm; the coarse disc's 6-9 mm) is at or below the 1.4 l_ref the crack band holds
   // to with the cutoff coupling (with the split, up to l_ref). G = 13.6 J/m^2 with the paper's SDEL and the cutoff coupling, 10.5 J/m^2 for the SDEL alone.
   double crack_band_reference_size_m = 0.0065;
+  // [choice] The width of the band a crack opens in, in particle spacings (SdelRegularization::CrackBand):
+  // a point of spacing h stands for a band n_b h wide and dissipates l_ref / (n_b h) times the reference
+  // point's energy per volume, so a crack n_b layers wide dissipates G_ref. 1 (default): the band is one
+  // particle, as a crack band in finite elements is one element. In this solver a crack opens three layers
+  // (the RK support of 2.5 h strains the layers beside an opening one: docs/studies/2026-12-06-crack-band.md),
+  // which is what 3 stands for. The band's limit (above) then reads n_b h up to about 1.4 l_ref.
+  double crack_band_width_spacings = 1.0;
   // Verification switch (not a modelling choice of the paper): TensileDamage::Off keeps d+ = 0.
   TensileDamage tensile_damage = TensileDamage::Sdel;
   // [choice] The wave speed (hence the stable step) uses the current tangent bulk modulus of the

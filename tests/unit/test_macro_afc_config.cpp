@@ -40,6 +40,7 @@ TEST(AfcConfig, ShippedFilesGiveTable6AndTheHandoff) {
   EXPECT_FALSE(p.options.sdel_zero_anchored);
   EXPECT_EQ(p.options.sdel_regularization, SdelRegularization::Lambda);
   EXPECT_EQ(p.options.crack_band_reference_size_m, 0.0065);
+  EXPECT_EQ(p.options.crack_band_width_spacings, 1.0);
   EXPECT_EQ(p.options.tensile_damage, TensileDamage::Sdel);
   EXPECT_FALSE(p.options.wave_speed_from_unloading_modulus);
   EXPECT_NO_THROW(AfcMaterial{p});
@@ -52,7 +53,7 @@ TEST(AfcConfig, OptionsBlockIsRead) {
        "options.tensile_degradation=split", "options.lode=willam_warnke", "options.opened_volume=recoverable",
        "options.tensile_rate=fib_model_code_2010", "options.sdel_zero_anchored=true", "options.tensile_damage=off",
        "options.wave_speed_from_unloading_modulus=true", "options.sdel_regularization=crack_band",
-       "options.crack_band_reference_size_m=0.003"});
+       "options.crack_band_reference_size_m=0.003", "options.crack_band_width_spacings=3"});
   EXPECT_EQ(p.options.rate_factor_floor, 0.0);
   EXPECT_TRUE(p.options.cap_strength_with_c5);
   EXPECT_EQ(p.options.damage_eps_min, 0.02);
@@ -65,6 +66,7 @@ TEST(AfcConfig, OptionsBlockIsRead) {
   EXPECT_TRUE(p.options.wave_speed_from_unloading_modulus);
   EXPECT_EQ(p.options.sdel_regularization, SdelRegularization::CrackBand);
   EXPECT_EQ(p.options.crack_band_reference_size_m, 0.003);
+  EXPECT_EQ(p.options.crack_band_width_spacings, 3.0);
   EXPECT_EQ(load_afc_params(kAfc, kSdel, {"options.sdel_regularization=lambda"}).options.sdel_regularization,
             SdelRegularization::Lambda);
   for (const auto& [text, limit] : {std::pair{"tmax", PrincipalStressLimit::Tmax},
@@ -96,6 +98,9 @@ TEST(AfcConfig, BadInputNamesFileKeyAndReason) {
             kAfc + ": key 'options.sdel_regularization': value 'bazant' is not one of: lambda, crack_band");
   EXPECT_EQ(error_with({"options.crack_band_reference_size_m=0"}).rfind(
                 kAfc + ": key 'options.crack_band_reference_size_m': value 0 is out of range", 0),
+            0u);
+  EXPECT_EQ(error_with({"options.crack_band_width_spacings=0.5"}).rfind(
+                kAfc + ": key 'options.crack_band_width_spacings': value 0.5 is out of range", 0),
             0u);
   EXPECT_EQ(error_with({"options.lode=mohr"}),
             kAfc + ": key 'options.lode': value 'mohr' is not one of: off, willam_warnke");
