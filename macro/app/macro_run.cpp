@@ -249,6 +249,8 @@ void run_macro(const MacroRunArgs& args) {
                solver.particles().n, material.model, settings.projectile.mass_kg, settings.projectile.velocity_m_s,
                solver.dt(), settings.run.end_time_s);
   std::vector<RunWarning> warnings = warnings_before_run(settings);
+  for (RunWarning& w : warnings_for_material(solver.material(), settings))
+    warnings.push_back(std::move(w));
   const WallTimeEstimate estimate =
       estimate_wall_time(solver.particles().n, settings.run.end_time_s - solver.time(), solver.dt(), max_threads());
   spdlog::info("{}", estimate.message);

@@ -6,11 +6,16 @@
 
 namespace uhpc::macro {
 
+double impact_point_spacing(const CaseSettings& settings) {
+  const TargetSettings& t = settings.target;
+  return t.shape == TargetSettings::Shape::Box ? t.box_spacing_m
+                                               : disc_spacing_at(t.disc, std::abs(settings.projectile.offset_m));
+}
+
 std::vector<RunWarning> warnings_before_run(const CaseSettings& settings) {
   std::vector<RunWarning> w;
   const TargetSettings& t = settings.target;
-  const double h = t.shape == TargetSettings::Shape::Box ? t.box_spacing_m
-                                                         : disc_spacing_at(t.disc, std::abs(settings.projectile.offset_m));
+  const double h = impact_point_spacing(settings);
   const double across = t.thickness_m() / h;
   if (across < kMinParticlesThroughThickness)
     w.push_back({"thin_target", fmt::format("the target is {:.1f} particles thick at the impact point ({:.2f} mm at "
@@ -19,6 +24,25 @@ std::vector<RunWarning> warnings_before_run(const CaseSettings& settings) {
   if (settings.solver.energy_error_limit == 0.0)
     w.push_back({"energy_check_off", "solver.energy_error_limit = 0: the energy balance is not checked, an unstable "
                                      "run goes on (read energy.balance_error in result.json)"});
+  return w;
+}
+
+std::vector<RunWarning> warnings_for_material(const MaterialSet& material, const CaseSettings& settings) {
+  std::vector<RunWarning> w;
+  const double spacing_m = impact_point_spacing(settings);
+  const auto* afc = std::get_if<MaterialBlock<AfcMaterial>>(&material);
+  if (!afc) return w;
+  const AfcOptions& o = afc->law.params().options;
+  if (o.sdel_regularization != SdelRegularization::CrackBand) return w;
+  const bool split = o.tensile_degradation == TensileDegradation::Split;
+  const double band = afc->law.band_width(spacing_m), l_ref = o.crack_band_reference_size_m;
+  const double limit = (split ? kCrackBandLimitSplit : kCrackBandLimitCutoff) * l_ref;
+  if (band > limit)
+    w.push_back({"crack_band_too_wide",
+                 fmt::format("the crack band at the impact point is {:.2f} mm wide ({:g} x {:.2f} mm), past the {:.2f} mm "
+                             "({:g} l_ref) up to which a point dissipates G_ref: it snaps back and dissipates more",
+                             band * 1e3, o.crack_band_width_spacings, spacing_m * 1e3, limit * 1e3,
+                             split ? kCrackBandLimitSplit : kCrackBandLimitCutoff)});
   return w;
 }
 

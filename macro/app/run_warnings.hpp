@@ -1,7 +1,7 @@
 #pragma once
 // Guard-rails: what a run says when its numbers may be dominated by numerics rather than by the model
 // (a target too few particles thick, contact and stabilization taking most of the sphere's energy,
-// stabilization giving energy back, the energy check switched off). Each warning is logged and listed
+// stabilization giving energy back, the energy check switched off, a crack band past its limit). Each warning is logged and listed
 // in result.json's `warnings` with a code, so a study can filter on it; none of them stops a run.
 #include <cstddef>
 #include <string>
@@ -11,6 +11,7 @@
 
 #include "case_config.hpp"
 #include "solver/energy.hpp"
+#include "solver/material_set.hpp"
 
 namespace uhpc::macro {
 
@@ -30,6 +31,18 @@ struct RunWarning {
 
 // Known before the run: the target's resolution through its thickness, the energy check.
 std::vector<RunWarning> warnings_before_run(const CaseSettings& settings);
+
+// The crack band's limit (AfcOptions::crack_band_width_spacings): past a band n_b h of this many l_ref a
+// point's elastic energy at its peak nearly fills its share and it snaps back, dissipating more than
+// G_ref (cutoff coupling: +1.3 % at 1.38 l_ref, +11 % at 1.54; the split's falls past l_ref).
+inline constexpr double kCrackBandLimitCutoff = 1.4;
+inline constexpr double kCrackBandLimitSplit = 1.0;
+
+// The target's spacing where the sphere strikes.
+double impact_point_spacing(const CaseSettings& settings);
+
+// Known from the law: a crack band wider than its limit at the impact point's spacing.
+std::vector<RunWarning> warnings_for_material(const MaterialSet& material, const CaseSettings& settings);
 
 // Known at the end: where the sphere's lost energy went.
 std::vector<RunWarning> warnings_after_run(const EnergyLedger& ledger);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "case_config.hpp"
+#include "materials/afc_config.hpp"
 #include "run_warnings.hpp"
 #include "uhpc/config.hpp"
 
@@ -39,6 +40,35 @@ TEST(MacroRunWarnings, ATargetFewerThanFiveParticlesThickIsFlagged) {
             V{});
   EXPECT_EQ(codes(warnings_before_run(settings_of("macro_disc_afc.json", {"solver.energy_error_limit=0"}))),
             V{"energy_check_off"});
+}
+
+TEST(MacroRunWarnings, ACrackBandPastItsLimitAtTheImpactPointIsFlagged) {
+  using V = std::vector<std::string>;
+  const auto afc = [](const std::vector<std::string>& options) {
+    return make_material_set(
+        AfcMaterial(load_afc_params(UHPC_DATA_DIR "/afc_uhpc.json", UHPC_DATA_DIR "/sdel_paper.json", options)), 1);
+  };
+  const CaseSettings shipped = settings_of("macro_disc_afc.json");  // 3.0 mm at the axis
+  // The paper's lambda law has no band; the one-spacing band at 3 mm and the three-spacing one (9 mm,
+  // below 1.4 l_ref = 9.1 mm) are within the limit.
+  EXPECT_EQ(codes(warnings_for_material(afc({}), shipped)), V{});
+  EXPECT_EQ(codes(warnings_for_material(afc({"options.sdel_regularization=crack_band"}), shipped)), V{});
+  const V band3 = codes(warnings_for_material(
+      afc({"options.sdel_regularization=crack_band", "options.crack_band_width_spacings=3"}), shipped));
+  EXPECT_EQ(band3, V{});
+  // The coarse disc (6 mm): a band of 18 mm; the split's limit is l_ref itself (9 mm > 6.5 mm).
+  const auto wide = warnings_for_material(
+      afc({"options.sdel_regularization=crack_band", "options.crack_band_width_spacings=3"}),
+      settings_of("macro_disc_afc_coarse.json"));
+  ASSERT_EQ(codes(wide), V{"crack_band_too_wide"});
+  EXPECT_NE(wide[0].message.find("18.00 mm wide"), std::string::npos) << wide[0].message;
+  EXPECT_EQ(codes(warnings_for_material(afc({"options.sdel_regularization=crack_band", "options.crack_band_width_spacings=3",
+                                             "options.tensile_degradation=split"}),
+                                        shipped)),
+            V{"crack_band_too_wide"});
+  // Not an AFC law: nothing to say.
+  EXPECT_EQ(codes(warnings_for_material(make_material_set(ElasticMaterial(ElasticParams{2500, 2e10, 1e10}), 1), shipped)),
+            V{});
 }
 
 TEST(MacroRunWarnings, NumericalSharesAboveTheThresholdOrNegativeStabilizationAreFlagged) {
