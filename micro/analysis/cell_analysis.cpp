@@ -11,6 +11,7 @@
 #include "cohesive_assembly.hpp"
 #include "crack_stage.hpp"
 #include "energy_books.hpp"
+#include "path_modes.hpp"
 #include "path_steps.hpp"
 #include "uniaxial_cell.hpp"
 
@@ -60,7 +61,7 @@ class Analysis {
         books_(o.energy_tolerance),
         steps_({o.opening_increment, o.min_opening_increment, o.max_opening_increment},
                {o.strain_increment, o.min_strain_increment, o.max_strain_increment}, o.step_growth),
-        zone_mode_(o.verification.zone_at_every_step) {}
+        opening_mode_(o.verification.zone_at_every_step) {}
 
   CellResponse run(const FractureObserver& observer);
   const std::vector<Crack>& cracks() const { return stage_.cracks(); }
@@ -93,14 +94,10 @@ class Analysis {
   double excess_energy() { return books_.excess(current_imbalance()); }
   double peak_ = 0.0;  // the largest sigma_bar so far
   void note_peak(const CellState& s) { peak_ = std::max(peak_, s.sigma_bar_Pa); }
-  // GrowthFallback::UnloadAndRegrow: how often, whether the last grow() unloaded, and the dissipated
-  // energy at the last unload (reloading ends when a point dissipates again).
-  std::size_t unloads_ = 0;
-  bool unloaded_ = false, reloading_ = false;
-  double reload_dissipated_ = 0.0, unload_strain_ = 0.0;
-  // The first reload step is a linear one under displacement control to this lambda (halved until
-  // no point dissipates in it, so the trapezoid work of that step is exact); 0: none pending.
-  double reload_lambda_ = 0.0;
+  // GrowthFallback::UnloadAndRegrow's way back onto the loading path (path_modes.hpp). Its first
+  // reload step is linear under displacement control (halved until no point dissipates in it, so the
+  // trapezoid work of that step is exact).
+  ReloadPath reload_;
   // Process-zone control (CellAnalysisOptions::zone_control): the cohesive points on their softening
   // envelope (flat_history() order), their length, and a counter that keys the LU's pattern.
   std::vector<char> zone_;
@@ -182,8 +179,7 @@ class Analysis {
   CellResponse out_;
   const FractureObserver* observer_ = nullptr;
   PathSteps steps_;
-  bool zone_mode_ = false;
-  std::string opening_failure_;  // why the crack-opening step failed before the zone took over
+  OpeningMode opening_mode_;  // ZoneControl::Fallback: the global opening or the process zone's (path_modes.hpp)
   std::string jump_reason_;      // set where the path has no continuation: the next step is a jump
 
   std::vector<TipCriterion> criteria();
@@ -193,9 +189,15 @@ class Analysis {
       if (c.valid) r = std::max(r, c.stress_Pa / law_.tensile_strength_Pa);
     return r;
   }
-  // Grows every tip at f_t and re-equilibrates, repeatedly. Returns "" or a failure diagnostic;
-  // sets unloaded_ when it passed a growth event by unloading (then there is no state to emit).
-  std::string grow(int& iterations);
+  // Grows every tip at f_t and re-equilibrates, repeatedly, until no tip is at f_t: Settled; Unloaded
+  // when it passed a growth event by unloading (then there is no state to emit, the path reloads);
+  // Failed with the diagnostic `why`.
+  struct Growth {
+    enum class Outcome { Settled, Unloaded, Failed } outcome = Outcome::Settled;
+    std::string why;
+  };
+  static Growth failed(std::string why) { return {Growth::Outcome::Failed, std::move(why)}; }
+  Growth grow(int& iterations);
   // Its parts. The tips at f_t, most stressed first:
   std::vector<std::size_t> tips_at_strength(const std::vector<TipCriterion>& t) const;
   // One growth round: the tips `ready` advance and the cell re-equilibrates (all of them, else only the
@@ -211,8 +213,8 @@ class Analysis {
   // GrowthFallback::Relax: the tips advance and the crack runs (relax()); "" or a diagnostic.
   std::string run_through(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t,
                           const Snapshot& before, const std::string& why, int& iterations);
-  // GrowthFallback::UnloadAndRegrow (and the verification hook): unload, then advance; "" or a diagnostic.
-  std::string unload_at_growth(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t);
+  // GrowthFallback::UnloadAndRegrow (and the verification hook): unload, then advance.
+  Growth unload_at_growth(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t);
   std::string unreachable(double created) const;  // the diagnostic of a growth that creates energy
   // GrowthFallback::UnloadAndRegrow at the converged state before growth: unloads to zero along the
   // secants (the work is booked), then advances the crack tips `ready` in their `directions`.
@@ -308,27 +310,26 @@ std::vector<TipCriterion> Analysis::criteria() {
   return tip_criteria(stage_.cracks(), s, stress);
 }
 
-std::string Analysis::grow(int& iterations) {
-  unloaded_ = false;
+Analysis::Growth Analysis::grow(int& iterations) {
   for (int round = 0; round < o_.max_growth_per_step; ++round) {
     const std::vector<TipCriterion> t = criteria();
     const std::vector<std::size_t> ready = tips_at_strength(t);
-    if (ready.empty()) return "";
+    if (ready.empty()) return {};
     if (o_.verification.unload_at_every_growth) return unload_at_growth(ready, t);
     const Snapshot before = snapshot();
     const GrowthRound g = advance_and_equilibrate(ready, t, before, iterations);
-    if (g.outcome == GrowthRound::NoGrowth) return "";
+    if (g.outcome == GrowthRound::NoGrowth) return {};
     if (g.outcome == GrowthRound::Equilibrium) continue;
     restore(before, true);
     switch (o_.growth_fallback) {
-      case GrowthFallback::Fail: return "re-equilibration after crack growth failed: " + g.why;
+      case GrowthFallback::Fail: return failed("re-equilibration after crack growth failed: " + g.why);
       case GrowthFallback::Relax:
-        if (std::string why = run_through(ready, t, before, g.why, iterations); !why.empty()) return why;
+        if (std::string why = run_through(ready, t, before, g.why, iterations); !why.empty()) return failed(why);
         continue;
       case GrowthFallback::UnloadAndRegrow: return unload_at_growth(ready, t);  // at zero load no tip is at f_t
     }
   }
-  return "";
+  return {};
 }
 
 std::vector<std::size_t> Analysis::tips_at_strength(const std::vector<TipCriterion>& t) const {
@@ -344,12 +345,12 @@ std::string Analysis::unreachable(double created) const {
                      created / books_.largest_work());
 }
 
-std::string Analysis::unload_at_growth(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t) {
+Analysis::Growth Analysis::unload_at_growth(const std::vector<std::size_t>& ready, const std::vector<TipCriterion>& t) {
   // An unload books the state as it is: growth rounds before it that created energy (a re-equilibration
   // into an unreachable equilibrium) would pass unseen, so they fail the load step instead.
-  if (const double created = excess_energy(); created > 0.0) return unreachable(created);
+  if (const double created = excess_energy(); created > 0.0) return failed(unreachable(created));
   unload_and_advance(ready, t);
-  return "";
+  return {Growth::Outcome::Unloaded, ""};
 }
 
 Analysis::GrowthRound Analysis::advance_and_equilibrate(const std::vector<std::size_t>& ready,
@@ -527,17 +528,13 @@ void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const s
   // the contact penalty), so d = 0 at lambda = 0 is the exact unloaded state and the work of the
   // unloading is -1/2 F lambda; the trapezoid to here books the step that reached this state.
   const double F = stage_.system().reaction(d_, lambda_);
-  unload_strain_ = lambda_ / cell_.side_m;
+  const double unload_strain = lambda_ / cell_.side_m;
   books_.book_unload(lambda_, F, dissipated(flat_history()));
   d_.setZero();
   lambda_ = 0.0;
   for (const std::size_t c : ready) advance_crack(stage_.cracks(), c, t[c].direction, cell_, mesh_, o_.growth);
   build_stage();  // the new segments start at zero opening: equilibrium holds exactly
-  ++unloads_;
-  unloaded_ = true;
-  reloading_ = true;
-  reload_dissipated_ = dissipated(flat_history());
-  reload_lambda_ = unload_strain_ * cell_.side_m;
+  reload_.unloaded(unload_strain, cell_.side_m, dissipated(flat_history()));
 }
 
 bool Analysis::select_old_segments(const std::vector<Crack>& before) {
@@ -618,7 +615,7 @@ CellResponse Analysis::run(const FractureObserver& observer) {
   }
   out_.dofs = stage_.model().dof_count();
   out_.enriched_nodes = stage_.model().enriched_node.size();
-  out_.growth_unloads = unloads_;
+  out_.growth_unloads = reload_.unloads();
   out_.jumps = books_.jumps();
   out_.factorizations = tangent_.factorizations();
   out_.krylov_corrections = tangent_.krylov_corrections();
@@ -681,25 +678,26 @@ bool Analysis::elastic_branch() {
 
 bool Analysis::first_cracking() {
   int iterations = 0;
-  if (const std::string why = grow(iterations); !why.empty()) {
+  const Growth g = grow(iterations);
+  if (g.outcome == Growth::Outcome::Failed) {
     out_.status = CellStatus::Failed;
-    out_.diagnostic = fmt::format("at e_bar = {:.4e}: {}", lambda_ / cell_.side_m, why);
+    out_.diagnostic = fmt::format("at e_bar = {:.4e}: {}", lambda_ / cell_.side_m, g.why);
     return false;
   }
-  if (!unloaded_) accept(state(iterations));
+  if (g.outcome == Growth::Outcome::Settled) accept(state(iterations));
   return true;
 }
 
 Analysis::StepPlan Analysis::plan_step() {
   StepPlan p;
   p.jump = !jump_reason_.empty();
-  p.reload = !p.jump && reload_lambda_ > 0.0;
+  p.reload = !p.jump && reload_.phase() == ReloadPath::Phase::LinearStep;
   p.opening = !p.jump && !p.reload && o_.control == PathControl::CrackOpening && active_length() > 0.0;
-  p.zone = p.opening && zone_mode_ && select_zone();
+  p.zone = p.opening && opening_mode_.mode() == OpeningMode::Mode::ProcessZone && select_zone();
   p.hold = p.zone ? Hold::Zone : p.opening ? Hold::Opening : Hold::Lambda;
   p.opening_before = stage_.system().opening_integral(d_);
   const double step = steps_.size(p.hold);
-  p.target = p.reload    ? reload_lambda_
+  p.target = p.reload    ? reload_.target_lambda()
              : p.zone    ? stage_.system().opening_gradient(zone_).dot(d_) + step * law_.critical_opening() * zone_length_
              : p.opening ? p.opening_before + step * law_.critical_opening() * active_length()
                          : lambda_ + step * cell_.side_m;
@@ -711,8 +709,7 @@ bool Analysis::cut(const StepPlan& p, const Snapshot& start) {
   d_ = start.d;
   lambda_ = start.lambda;
   if (p.reload) {  // below 1/64 of the unloading strain: reload by the ordinary steps instead
-    reload_lambda_ *= 0.5;
-    if (reload_lambda_ < unload_strain_ * cell_.side_m / 64.0) reload_lambda_ = 0.0;
+    reload_.halve();
     return true;
   }
   return steps_.cut(p.hold);
@@ -720,7 +717,7 @@ bool Analysis::cut(const StepPlan& p, const Snapshot& start) {
 
 Analysis::StepEnd Analysis::jump_or_fail(const StepPlan& p, const std::string& diagnostic) {
   // A failure at the smallest step becomes a jump, once (JumpFallback::Relax), else the cell fails.
-  if (o_.jump == JumpFallback::Relax && !p.jump && reload_lambda_ <= 0.0) {
+  if (o_.jump == JumpFallback::Relax && !p.jump && reload_.phase() != ReloadPath::Phase::LinearStep) {
     jump_reason_ = diagnostic;
     return StepEnd::Retry;
   }
@@ -757,14 +754,13 @@ Analysis::StepEnd Analysis::path_step(int step) {
     // The global opening integral may pass a maximum (points elsewhere close faster than the process
     // zone opens): the process zone's own opening still grows, so step on it instead.
     if (p.opening && !p.zone && o_.zone_control == ZoneControl::Fallback && select_zone()) {
-      zone_mode_ = true;
+      opening_mode_.folded(n.why);
       steps_.reset_openings();
-      opening_failure_ = n.why;
       return StepEnd::Retry;
     }
     return jump_or_fail(p, fmt::format("at e_bar = {:.4e}, step {}: {} ({}{})", e0, step, n.why,
                                        p.jump ? "the jump" : "smallest step",
-                                       p.zone ? "; the crack-opening step before: " + opening_failure_ : ""));
+                                       p.zone ? "; the crack-opening step before: " + opening_mode_.fold_reason() : ""));
   }
   if (!p.reload && in_compression())
     return retry(p, start, fmt::format("at e_bar = {:.4e}, step {}: the smallest step crosses into compression", e0, step));
@@ -776,7 +772,7 @@ Analysis::StepEnd Analysis::path_step(int step) {
   }
   commit(trial);
   if (p.reload) {
-    reload_lambda_ = 0.0;
+    reload_.linear_step_taken();
     scale_to_envelope();
   }
   // Overshoot of the growth criterion: cut, so cracks advance close to f_t.
@@ -786,11 +782,12 @@ Analysis::StepEnd Analysis::path_step(int step) {
     commit(trial);  // at the smallest step: accept the overshoot
   }
   int iterations = n.iterations;
-  if (const std::string why = grow(iterations); !why.empty()) {
+  const Growth g = grow(iterations);
+  if (g.outcome == Growth::Outcome::Failed) {
     restore(start, true);  // back to the start of the step, geometry included, with a smaller step
-    return retry(p, start, fmt::format("at e_bar = {:.4e}: {} (smallest step)", lambda_ / cell_.side_m, why));
+    return retry(p, start, fmt::format("at e_bar = {:.4e}: {} (smallest step)", lambda_ / cell_.side_m, g.why));
   }
-  if (unloaded_) return StepEnd::Retry;  // reload (reload_lambda_), then on with the step sizes in use
+  if (g.outcome == Growth::Outcome::Unloaded) return StepEnd::Retry;  // reload, then on with the step sizes in use
   // The growth's re-equilibration can land on the compression branch too (a 3.0 mm cell went from
   // e = 3.8e-4 to -2.3e-4 at -9.6 MPa in one step and was taken as separated).
   if (!p.reload && in_compression()) {
@@ -814,7 +811,7 @@ Analysis::StepEnd Analysis::path_step(int step) {
     next.jump_dissipated_J_m = books_.jump_dissipated();
     jump_reason_.clear();
     steps_.reset_openings();
-    zone_mode_ = o_.verification.zone_at_every_step;
+    opening_mode_.back_to_global();
   }
   accept(next);
   return after_accepted(p, n.iterations);
@@ -824,13 +821,13 @@ Analysis::StepEnd Analysis::after_accepted(const StepPlan& p, int iterations) {
   const CellState& s = out_.states.back();
   if (iterations <= o_.easy_iterations) steps_.grow(p.hold);
   // Back to the global opening once it grows again.
-  if (p.zone && !o_.verification.zone_at_every_step && stage_.system().opening_integral(d_) > p.opening_before)
-    zone_mode_ = false;
+  if (p.zone && !opening_mode_.always_zone() && stage_.system().opening_integral(d_) > p.opening_before)
+    opening_mode_.back_to_global();
   // Back on the envelope once some point dissipates beyond round-off.
-  if (reloading_ && s.dissipated_J_m > reload_dissipated_ + dissipation_round_off()) reloading_ = false;
+  reload_.dissipated(s.dissipated_J_m, dissipation_round_off());
   // Separated: sigma_bar below separation_fraction x the peak; on a reload (a secant through the
   // origin), the stress it would have at the strain it was unloaded from.
-  const double floor = o_.separation_fraction * peak_ * (reloading_ ? s.strain / unload_strain_ : 1.0);
+  const double floor = o_.separation_fraction * peak_ * reload_.separation_scale(s.strain);
   if (active_length() > 0.0 && s.sigma_bar_Pa < floor) {
     out_.status = CellStatus::Separated;
     return StepEnd::Stop;
