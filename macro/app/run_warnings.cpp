@@ -33,7 +33,7 @@ std::vector<RunWarning> warnings_for_material(const MaterialSet& material, const
   const auto* afc = std::get_if<MaterialBlock<AfcMaterial>>(&material);
   if (!afc) return w;
   const AfcOptions& o = afc->law.params().options;
-  if (o.sdel_regularization != SdelRegularization::CrackBand) return w;
+  if (o.sdel_regularization != SdelRegularization::CrackBand || o.tensile_damage == TensileDamage::Off) return w;
   const bool split = o.tensile_degradation == TensileDegradation::Split;
   const double band = afc->law.band_width(spacing_m), l_ref = o.crack_band_reference_size_m;
   const double limit = (split ? kCrackBandLimitSplit : kCrackBandLimitCutoff) * l_ref;

@@ -252,7 +252,7 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
         throw std::invalid_argument("AfcMaterial: the particle spacing h_I must be > 0 for the SDEL");
       if (split) {
         // The split's crack band (below, once the effective stress is known), only while kappa grows:
-        // with h > l_ref a falling stress would raise the band strain, and unloading must not damage.
+        // with n_b h > l_ref a falling stress would raise the band strain, and unloading must not damage.
         crack_band_growing = st.tensile_strain_max > kappa_old;
       } else {
         // The cutoff coupling's crack band (afc_params.hpp): up to the reference's onset of tensile
@@ -330,7 +330,7 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   // The effective stress does not depend on d+ (its limits are the undamaged ones), so its measure e_e
   // is this step's: sigma_e grows with the strain up to e_e and is held at AFC's strength beyond, so
   // sigma_e(u) / sigma_e(kappa) = m(u) / e_e with m(u) = min(u, e_e), and the elastic part of the
-  // point is (1 - d_ref(u)) m(u). The band's strain u = e_el + (kappa - e_el) h / l_ref is then the
+  // point is (1 - d_ref(u)) m(u). The band's strain u = e_el + (kappa - e_el) n_b h / l_ref is then the
   // root of f(u) = u - (1 - r) (1 - d_ref(u)) m(u) - r kappa, r = n_b h / l_ref, solved here rather than
   // lagged by a step: the lag's fixed-point map is not a contraction on the steep part of the SDEL.
   // For r <= 1, f rises (f' >= r) from f(r kappa) <= 0 to f(kappa) >= 0: one root, by bisection. For

@@ -1,5 +1,6 @@
 #pragma once
-// The two modes a crack analysis's path can be in besides plain loading (cell_analysis.hpp, 3. and 4.),
+// The two modes a crack analysis's path can be in besides plain loading (cell_analysis.hpp: 2.'s
+// GrowthFallback and 3.'s process-zone control),
 // each a small state machine with named phases, so that the path's code asks "which phase" instead of
 // reading flags that together mean one.
 #include <cstddef>
@@ -12,11 +13,16 @@ namespace uhpc::micro {
 //   Loading     --unloaded()-->          LinearStep  a growth event found no equilibrium: the cell was
 //                                                    unloaded along its secants to zero (at strain e_u,
 //                                                    having dissipated D_u) and its tips advanced there
+//                                        OnSecant    the same at e_u <= 0 (a re-equilibration that had
+//                                                    landed in compression): no linear step to take
 //   LinearStep  --linear_step_taken()--> OnSecant    the first reload step, linear under displacement
 //                                                    control to e_u, was accepted
 //   LinearStep  --halve()-->             LinearStep  it dissipated or failed: half its target, or
 //                                        OnSecant    ordinary steps once the target is below e_u / 64
-//   OnSecant    --dissipated()-->        Loading     a cohesive point dissipates beyond D_u again
+//   OnSecant    --dissipated()-->        Loading     an accepted state has dissipated beyond D_u again
+//   LinearStep  --dissipated()-->        Loading     the same, reached by a jump (a relaxation taken right
+//                                                    after the unload): the cell is on its envelope, and a
+//                                                    linear step, which must not dissipate, has no use
 //
 // Until Loading again the cell is on a secant through the origin, so its separation is measured at
 // the stress that secant has at the strain it was unloaded from (separation_scale).
@@ -32,6 +38,7 @@ class ReloadPath {
     dissipated_at_unload_ = dissipated_J_m;
     target_lambda_ = unload_strain_ * side_m_;
     phase_ = Phase::LinearStep;
+    if (!(target_lambda_ > 0.0)) to_secant();
     ++unloads_;
   }
   // The far-face displacement the linear step goes to (LinearStep only).
@@ -44,7 +51,10 @@ class ReloadPath {
   // An accepted state that has dissipated `dissipated_J_m`: back on the envelope once that passes the
   // dissipation at the unload by more than `round_off`.
   void dissipated(double dissipated_J_m, double round_off) {
-    if (phase_ == Phase::OnSecant && dissipated_J_m > dissipated_at_unload_ + round_off) phase_ = Phase::Loading;
+    if (phase_ != Phase::Loading && dissipated_J_m > dissipated_at_unload_ + round_off) {
+      target_lambda_ = 0.0;
+      phase_ = Phase::Loading;
+    }
   }
   // The factor on the separation threshold at `strain`: strain / e_u on the secant, 1 when loading.
   double separation_scale(double strain) const { return phase_ == Phase::Loading ? 1.0 : strain / unload_strain_; }

@@ -99,6 +99,9 @@ TEST(AfcConfig, BadInputNamesFileKeyAndReason) {
   EXPECT_EQ(error_with({"options.crack_band_reference_size_m=0"}).rfind(
                 kAfc + ": key 'options.crack_band_reference_size_m': value 0 is out of range", 0),
             0u);
+  EXPECT_EQ(error_with({"options.crack_band_width_spacings=9"}).rfind(
+                kAfc + ": key 'options.crack_band_width_spacings': value 9 is out of range", 0),
+            0u);
   EXPECT_EQ(error_with({"options.crack_band_width_spacings=0.5"}).rfind(
                 kAfc + ": key 'options.crack_band_width_spacings': value 0.5 is out of range", 0),
             0u);

@@ -66,6 +66,11 @@ TEST(MacroRunWarnings, ACrackBandPastItsLimitAtTheImpactPointIsFlagged) {
                                              "options.tensile_degradation=split"}),
                                         shipped)),
             V{"crack_band_too_wide"});
+  // No tensile damage at all (the verification switch): the band does nothing, nothing to say.
+  EXPECT_EQ(codes(warnings_for_material(afc({"options.sdel_regularization=crack_band", "options.crack_band_width_spacings=3",
+                                             "options.tensile_damage=off"}),
+                                        settings_of("macro_disc_afc_coarse.json"))),
+            V{});
   // Not an AFC law: nothing to say.
   EXPECT_EQ(codes(warnings_for_material(make_material_set(ElasticMaterial(ElasticParams{2500, 2e10, 1e10}), 1), shipped)),
             V{});

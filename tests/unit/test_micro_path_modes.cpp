@@ -40,13 +40,28 @@ TEST(MicroPathModes, AReloadStepIsHalvedUntilBelowASixtyFourthThenOrdinarySteps)
   r.halve();  // 1/128
   EXPECT_EQ(r.phase(), Phase::OnSecant);
   EXPECT_EQ(r.target_lambda(), 0.0);
-  // Dissipation during the linear step does not end the reload (only an accepted secant state does).
+  // A state accepted while the linear step is still pending (a jump right after the unload) that has
+  // dissipated again ends the reload: the cell is on its envelope.
   ReloadPath s;
   s.unloaded(4e-4, 0.003, 0.0);
   s.dissipated(1.0, 1e-9);
-  EXPECT_EQ(s.phase(), Phase::LinearStep);
+  EXPECT_EQ(s.phase(), Phase::Loading);
+  EXPECT_EQ(s.target_lambda(), 0.0);
+  EXPECT_EQ(s.separation_scale(2e-4), 1.0);
   s.unloaded(3e-4, 0.003, 0.0);  // a second unload counts
   EXPECT_EQ(s.unloads(), 2u);
+}
+
+TEST(MicroPathModes, AnUnloadAtNoTensionHasNoLinearStep) {
+  // Unloaded from a state at e_u <= 0 (a re-equilibration that had landed in compression): there is no
+  // linear step to e_u, only the secant, whose separation test stays the unload's.
+  for (const double e_u : {0.0, -2.3e-4}) {
+    ReloadPath r;
+    r.unloaded(e_u, 0.003, 0.2);
+    EXPECT_EQ(r.phase(), Phase::OnSecant) << e_u;
+    EXPECT_EQ(r.target_lambda(), 0.0) << e_u;
+    EXPECT_EQ(r.unloads(), 1u);
+  }
 }
 
 TEST(MicroPathModes, TheOpeningFoldsToTheProcessZoneAndBack) {
