@@ -12,7 +12,9 @@ on up to --max-end-time (default: the end time, no extension). A run whose resul
 it was made from the inputs this command would give it at one end time of that ladder (its
 provenance.config_hash against `uhpc-macro ... --inputs-hash`, either line), carried on if it is still
 undecided below --max-end-time, and refused otherwise (exit 2, naming it: another case, SDEL, --set or
-end time). A run that failed numerically before (DIR/diagnostic.json and DIR/config.json of the same
+end time). A run killed while it was being carried on (DIR/config.json of these inputs at an end time of
+the ladder, and the checkpoint it went on from) goes on from that checkpoint again, so its finished part
+is not lost; uhpc-macro refuses a checkpoint written by another build (exit 2). A run that failed numerically before (DIR/diagnostic.json and DIR/config.json of the same
 inputs) is not run again (exit 1; remove DIR to run it again).
 --launch puts a launcher before each run of uhpc-macro, split as a shell would (e.g. "srun -N1 -n1 -c2
 --exclusive"); a kept run launches nothing.
@@ -59,16 +61,20 @@ class Shot:
             cmd += ["--set", s]
         return cmd
 
+    def input_hashes(self, velocity, end_time):
+        """The hashes of the inputs of the run at one velocity and end time: this scheme's, then (uhpc-macro
+        since 2026-12-06) the former one's, notes included."""
+        done = subprocess.run(self.command(velocity, end_time) + ["--inputs-hash"], capture_output=True, text=True)
+        if done.returncode != 0:
+            sys.exit(f"{self.prog}: uhpc-macro --inputs-hash failed at {velocity} m/s: {done.stderr.strip()}")
+        return done.stdout.split()
+
     def check_reusable(self, velocity, out, found):
         """Stops (exit 2) unless the run in `out` (its inputs' hash `found`) was made from the inputs this
         study would give it, at one of its end times."""
         expected = []
         for end_time in self.end_times():
-            done = subprocess.run(self.command(velocity, end_time) + ["--inputs-hash"], capture_output=True, text=True)
-            if done.returncode != 0:
-                sys.exit(f"{self.prog}: uhpc-macro --inputs-hash failed at {velocity} m/s: {done.stderr.strip()}")
-            # The inputs' hash, then (uhpc-macro since 2026-12-06) the same in the former scheme, notes included.
-            hashes = done.stdout.split()
+            hashes = self.input_hashes(velocity, end_time)
             expected.append(hashes[0] if hashes else "")
             if found in hashes:
                 return
@@ -76,6 +82,18 @@ class Shot:
               f"{', '.join(expected)}: another case, SDEL, --set or end time); use another --out or remove it",
               file=sys.stderr)
         sys.exit(2)
+
+    def interrupted(self, velocity, out):
+        """The end time of a run in `out` that was stopped before it (no result.json) but can go on from its
+        checkpoint: an undecided run being carried on when it was killed (its config.json, written at its
+        start, of these inputs at one end time of the ladder, and the checkpoint.h5 it went on from, which
+        uhpc-macro rewrites only at an end time). None otherwise: a fresh run killed before its end time
+        leaves no checkpoint and starts again."""
+        config, checkpoint = out / "config.json", out / "checkpoint.h5"
+        if not (config.is_file() and checkpoint.is_file()):
+            return None
+        found = json.loads(config.read_text()).get("hash")
+        return next((t for t in self.end_times() if found in self.input_hashes(velocity, t)), None)
 
     def launch_run(self, velocity, out, end_time, restart):
         """Runs uhpc-macro (a fresh run, or the undecided one in `out` carried on to end_time): None when it
@@ -108,7 +126,9 @@ class Shot:
             self.check_reusable(velocity, out, json.loads((out / "config.json").read_text()).get("hash"))
             return None, None
         else:
-            failure = self.launch_run(velocity, out, self.end_time, restart=False)
+            # A run killed while it was carried on goes on from its checkpoint, not from t = 0.
+            resume = self.interrupted(velocity, out)
+            failure = self.launch_run(velocity, out, resume or self.end_time, restart=resume is not None)
             if failure is not None:
                 return None, failure
         r = json.loads(result.read_text())

@@ -5,7 +5,8 @@ decided; run again, it launches nothing; a run carried on only to 2 ms stays und
 result says so) and is carried on further when the maximum is raised; the end time is taken from a --set
 run.end_time_s (not overridden by the ladder) or from the case; given twice and different, refused (exit
 2); a run made from other inputs refused (exit 2), untouched; a numerical failure exits 1 and is not
-rerun; a killed run exits 3; a decided run launches through --launch, a kept one does not."""
+rerun; a killed run exits 3; a run killed while carried on goes on from its checkpoint on resume, one
+without a checkpoint starts over; a decided run launches through --launch, a kept one does not."""
 import json
 import pathlib
 import subprocess
@@ -90,6 +91,25 @@ def main():
               f"{done.returncode} {log(tmp, 'calls.txt')} {done.stderr}")
         done, out = shot(tmp, 260)
         check(done.returncode == 3 and "no diagnostic" in done.stderr, f"{done.returncode} {done.stderr}")
+    with tempfile.TemporaryDirectory() as tmp:  # killed while carried on: on again from its checkpoint
+        done, out = shot(tmp, 238, max_end_time="2e-3")  # undecided at 2 ms, its checkpoint kept
+        check(done.returncode == 0 and result(out)["outcome"] == "undecided", f"{done.returncode} {done.stderr}")
+        # The carry-on to 4 ms killed: uhpc-macro wrote its config.json and removed result.json at its start.
+        sys.path.insert(0, str(SCRIPT.parent))
+        from carried_shot import Shot
+        to_4ms = Shot("test", str(pathlib.Path(tmp) / "macro.py"), "", str(pathlib.Path(tmp) / "case.json"), None, [],
+                      1e-3, 4e-3)
+        (out / "result.json").unlink()
+        (out / "config.json").write_text(json.dumps({"hash": to_4ms.input_hashes(238, 4e-3)[0]}))
+        done, out = shot(tmp, 238, max_end_time="4e-3")
+        check(done.returncode == 0 and result(out)["outcome"] == "perforated" and log(tmp, "calls.txt") == [238]
+              and log(tmp, "restarts.txt") == [238, 238], f"{done.returncode} {log(tmp, 'calls.txt')} "
+              f"{log(tmp, 'restarts.txt')} {done.stderr}")
+        # Without its checkpoint (a fresh run killed: uhpc-macro writes none before its end time) it starts over.
+        (out / "result.json").unlink()
+        (out / "checkpoint.h5").unlink()
+        done, out = shot(tmp, 238, max_end_time="4e-3")
+        check(done.returncode == 0 and log(tmp, "calls.txt") == [238, 238], f"{log(tmp, 'calls.txt')} {done.stderr}")
     with tempfile.TemporaryDirectory() as tmp:  # through a launcher: a missing run launched, a kept one not
         launcher = pathlib.Path(tmp) / "launcher.sh"
         launcher.write_text(f"#!/bin/sh\necho \"$*\" >> {tmp}/launches.txt\nexec \"$@\"\n")
