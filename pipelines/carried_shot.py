@@ -12,9 +12,10 @@ on up to --max-end-time (default: the end time, no extension). A run whose resul
 it was made from the inputs this command would give it at one end time of that ladder (its
 provenance.config_hash against `uhpc-macro ... --inputs-hash`, either line), carried on if it is still
 undecided below --max-end-time, and refused otherwise (exit 2, naming it: another case, SDEL, --set or
-end time). A run killed while it was being carried on (DIR/config.json of these inputs at an end time of
-the ladder, and the checkpoint it went on from) goes on from that checkpoint again, so its finished part
-is not lost; uhpc-macro refuses a checkpoint written by another build (exit 2). A run that failed numerically before (DIR/diagnostic.json and DIR/config.json of the same
+end time). A run killed before its end time with a checkpoint to go on from (DIR/config.json of these
+inputs at an end time of the ladder, and DIR/checkpoint.h5: a run killed while it was carried on) goes on
+from that checkpoint, so its finished part is not lost; uhpc-macro refuses a checkpoint written by another
+build (exit 2). A run that failed numerically before (DIR/diagnostic.json and DIR/config.json of the same
 inputs) is not run again (exit 1; remove DIR to run it again).
 --launch puts a launcher before each run of uhpc-macro, split as a shell would (e.g. "srun -N1 -n1 -c2
 --exclusive"); a kept run launches nothing.
@@ -87,8 +88,8 @@ class Shot:
         """The end time of a run in `out` that was stopped before it (no result.json) but can go on from its
         checkpoint: an undecided run being carried on when it was killed (its config.json, written at its
         start, of these inputs at one end time of the ladder, and the checkpoint.h5 it went on from, which
-        uhpc-macro rewrites only at an end time). None otherwise: a fresh run killed before its end time
-        leaves no checkpoint and starts again."""
+        uhpc-macro rewrites only at an end time, or at run.checkpoint_interval_steps). None otherwise: a
+        fresh run killed before its end time without periodic checkpoints leaves none and starts again."""
         config, checkpoint = out / "config.json", out / "checkpoint.h5"
         if not (config.is_file() and checkpoint.is_file()):
             return None

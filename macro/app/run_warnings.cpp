@@ -29,20 +29,18 @@ std::vector<RunWarning> warnings_before_run(const CaseSettings& settings) {
 
 std::vector<RunWarning> warnings_for_material(const MaterialSet& material, const CaseSettings& settings) {
   std::vector<RunWarning> w;
-  const double spacing_m = impact_point_spacing(settings);
   const auto* afc = std::get_if<MaterialBlock<AfcMaterial>>(&material);
   if (!afc) return w;
   const AfcOptions& o = afc->law.params().options;
   if (o.sdel_regularization != SdelRegularization::CrackBand || o.tensile_damage == TensileDamage::Off) return w;
-  const bool split = o.tensile_degradation == TensileDegradation::Split;
-  const double band = afc->law.band_width(spacing_m), l_ref = o.crack_band_reference_size_m;
-  const double limit = (split ? kCrackBandLimitSplit : kCrackBandLimitCutoff) * l_ref;
+  const double spacing_m = impact_point_spacing(settings), band = afc->law.band_width(spacing_m);
+  const double factor = o.tensile_degradation == TensileDegradation::Split ? kCrackBandLimitSplit : kCrackBandLimitCutoff;
+  const double limit = factor * o.crack_band_reference_size_m;
   if (band > limit)
     w.push_back({"crack_band_too_wide",
                  fmt::format("the crack band at the impact point is {:.2f} mm wide ({:g} x {:.2f} mm), past the {:.2f} mm "
                              "({:g} l_ref) up to which a point dissipates G_ref: it snaps back and dissipates more",
-                             band * 1e3, o.crack_band_width_spacings, spacing_m * 1e3, limit * 1e3,
-                             split ? kCrackBandLimitSplit : kCrackBandLimitCutoff)});
+                             band * 1e3, o.crack_band_width_spacings, spacing_m * 1e3, limit * 1e3, factor)});
   return w;
 }
 

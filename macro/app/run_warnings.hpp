@@ -1,8 +1,9 @@
 #pragma once
 // Guard-rails: what a run says when its numbers may be dominated by numerics rather than by the model
 // (a target too few particles thick, contact and stabilization taking most of the sphere's energy,
-// stabilization giving energy back, the energy check switched off, a crack band past its limit). Each warning is logged and listed
-// in result.json's `warnings` with a code, so a study can filter on it; none of them stops a run.
+// stabilization giving energy back, the energy check switched off, a crack band past its limit). Each
+// warning is logged and listed in result.json's `warnings` with a code, so a study can filter on it;
+// none of them stops a run.
 #include <cstddef>
 #include <string>
 #include <vector>
