@@ -23,9 +23,14 @@ constexpr double kRho = 2555.7, kK = 2.20704e10;
 constexpr double kMass = 9.071e-3, kRadius = 0.00635, kV0 = 300.0;
 constexpr double kSide = 0.054, kThick = 0.009;
 
-// The impulse the block has taken from the sphere (N s) when the sphere's centre reaches the exit face.
-double impulse(double h, double factor) {
-  ParticleBody body = box_body(kSide, kSide, kThick, h);
+// What the block (thickness t) has taken from the sphere when the sphere's centre reaches depth `stop`.
+struct Resistance {
+  double impulse;        // M (v0 - v), N s
+  double contact_share;  // the contact's dissipation over the sphere's lost kinetic energy
+};
+
+Resistance resistance(double h, double factor, double t = kThick, double stop = kThick) {
+  ParticleBody body = box_body(kSide, kSide, t, h);
   for (std::size_t i = 0; i < body.size(); ++i) {
     body.position[3 * i] -= 0.5 * kSide;
     body.position[3 * i + 1] -= 0.5 * kSide;
@@ -46,12 +51,13 @@ double impulse(double h, double factor) {
     if (!s.step()) {
       ADD_FAILURE() << "step failed at " << s.time() << " s: kind " << static_cast<int>(s.failure().kind) << ", particle "
                     << s.failure().particle << ", energy error " << s.failure().energy_error;
-      return std::nan("");
+      return {std::nan(""), std::nan("")};
     }
-    if (s.sphere().x[2] >= kThick) break;
+    if (s.sphere().x[2] >= stop) break;
   }
-  EXPECT_GE(s.sphere().x[2], kThick) << "the sphere did not reach the exit face";
-  return kMass * (kV0 - s.sphere().v[2]);
+  EXPECT_GE(s.sphere().x[2], stop) << "the sphere did not reach depth " << stop;
+  const double v = s.sphere().v[2];
+  return {kMass * (kV0 - v), s.ledger().contact / (0.5 * kMass * (kV0 * kV0 - v * v))};
 }
 
 // The observed order p of I(h) = I0 + C h^p through three spacings (unequal ratios): the root of
@@ -81,11 +87,17 @@ TEST(MacroContactConvergence, TheImpulseOnAStrengthlessTargetUnderRefinement) {
   double I_half[3] = {}, I_zero[3] = {};
   for (const double factor : {0.5, 0.0}) {
     double* I = factor > 0 ? I_half : I_zero;
-    for (int k = 0; k < 3; ++k) I[k] = impulse(h[k], factor);
+    double share[3] = {};
+    for (int k = 0; k < 3; ++k) {
+      const Resistance r = resistance(h[k], factor);
+      I[k] = r.impulse;
+      share[k] = r.contact_share;
+    }
     const double p = observed_order(h, I);
     std::printf("contact radius %.2f h: impulse %.5f / %.5f / %.5f N s at 3.0 / 2.25 / 1.5 mm (spread %.1f %%), "
-                "observed order %.2f\n",
-                factor, I[0], I[1], I[2], 100.0 * (std::max({I[0], I[1], I[2]}) - std::min({I[0], I[1], I[2]})) / I[2], p);
+                "observed order %.2f; contact's share of the lost energy %.4f / %.4f / %.4f\n",
+                factor, I[0], I[1], I[2], 100.0 * (std::max({I[0], I[1], I[2]}) - std::min({I[0], I[1], I[2]})) / I[2], p,
+                share[0], share[1], share[2]);
     EXPECT_GT(I[0], I[1]);
     EXPECT_GT(I[1], I[2]);
     EXPECT_GE(p, 1.0);
@@ -95,6 +107,23 @@ TEST(MacroContactConvergence, TheImpulseOnAStrengthlessTargetUnderRefinement) {
     std::printf("spacing %.2f mm: factor 0 resists %.1f %% less than h / 2\n", 1e3 * h[k], 100.0 * less);
     EXPECT_GT(less, 0.10) << "spacing " << h[k];
     EXPECT_LT(less, 0.40) << "spacing " << h[k];
+  }
+}
+
+// The study behind docs/studies/2026-12-07-contact-refinement.md (not a check: run with
+// --gtest_also_run_disabled_tests): a block three times as thick (27 mm), so that no spacing pushes it
+// as a plug, the impulse taken when the sphere's centre is one radius deep. Finer than 1.5 mm the elastic
+// fluid (it holds tension and has no shear to stabilize) breaks the energy check before that depth:
+// at 1.125 mm with factor 0 at 36 us, at 0.75 mm with h / 2 at 25 us.
+TEST(MacroContactConvergence, DISABLED_StudyThickBlock) {
+  const double h[3] = {0.003, 0.00225, 0.0015};
+  for (const double factor : {0.5, 0.0}) {
+    for (const double hk : h) {
+      const Resistance r = resistance(hk, factor, 3.0 * kThick, kRadius);
+      std::printf("contact radius %.2f h, spacing %.3f mm: impulse %.5f N s, contact's share %.4f\n", factor,
+                  1e3 * hk, r.impulse, r.contact_share);
+      std::fflush(stdout);
+    }
   }
 }
 
