@@ -13,8 +13,10 @@ quantiles (OpenTURNS' empirical quantiles); per sample the Lambert-Jonas fit wit
 
 Convergence: the band's ends with the first half of the samples against all of them. The band is stable
 to --stable-to m/s (default 5) when no end of any velocity's band moves by more than that between the two;
-the answer is written with the largest move, so the number of samples a stable band needs is read off
-(doubling UQ_SAMPLES until it says stable).
+the answer is written with the largest move. The same with the first 4, 8, 16, ... samples and all of
+them (`by_samples`): the largest move of a band end from one row to the next, and the number of samples
+from which no later doubling moves an end by more than --stable-to (`samples_needed`, none while the last
+doubling still does), so the number of samples a stable band needs is read off one run.
 
 Writes DIR/uq_band.json (format uhpc-uq-band/1: the samples and their SDEL files' hashes, each run's
 outcome and provenance hash, the bands, the fits, the convergence) and DIR/uq_band.md (the band beside
@@ -100,9 +102,37 @@ def band(velocities, table, stable_to):
                     "undecided": sum(row["runs"][j]["outcome"] == "undecided" for row in table),
                     "not_perforated": sum(row["runs"][j]["outcome"] != "perforated" for row in table),
                     "band_end_move_from_first_half_m_s": move})
+    by_samples = band_by_samples(vr)
+    needed = None  # the first row from which no later row moves an end by more than stable_to
+    for i in range(len(by_samples) - 1, 0, -1):
+        if by_samples[i]["largest_move_from_previous_m_s"] > stable_to:
+            break
+        needed = by_samples[i - 1]["samples"]
     convergence = {"samples": n, "first_half": half, "stable_to_m_s": stable_to,
-                   "largest_band_end_move_m_s": worst_move, "stable": bool(n >= 4 and worst_move <= stable_to)}
+                   "largest_band_end_move_m_s": worst_move, "stable": bool(n >= 4 and worst_move <= stable_to),
+                   "by_samples": by_samples, "samples_needed": needed}
     return vr, out, convergence
+
+
+def band_by_samples(vr):
+    """The band's ends of every velocity with the first 4, 8, 16, ... samples and with all of them, and the
+    largest move of an end from the row before (None in the first row)."""
+    n = vr.shape[0]
+    counts = []
+    k = 4
+    while k < n:
+        counts.append(k)
+        k *= 2
+    counts.append(n)
+    rows, previous = [], None
+    for k in counts:
+        ends = [quantiles(vr[:k, j]) for j in range(vr.shape[1])]
+        q05, q95 = [e[0] for e in ends], [e[2] for e in ends]
+        move = None if previous is None else max(
+            max(abs(a - b) for a, b in zip(q05, previous[0])), max(abs(a - b) for a, b in zip(q95, previous[1])))
+        rows.append({"samples": k, "q05": q05, "q95": q95, "largest_move_from_previous_m_s": move})
+        previous = (q05, q95)
+    return rows
 
 
 def fits(velocities, vr):
@@ -135,6 +165,18 @@ def markdown(bands, fit_summary, convergence, experiments, paper, source):
            + ("stable" if convergence["stable"] else "not stable")
            + f" to {convergence['stable_to_m_s']:g} m/s"
            + ("" if convergence["stable"] else " (run more samples: UQ_SAMPLES)") + "."]
+    if len(convergence["by_samples"]) > 1:
+        md += ["", "| samples | " + " | ".join(f"{b['velocity_m_s']:g} m/s: 5-95 %" for b in bands)
+               + " | largest end move from the row above, m/s |",
+               "|---|" + "---|" * len(bands) + "---|"]
+        for row in convergence["by_samples"]:
+            move = row["largest_move_from_previous_m_s"]
+            md.append(f"| {row['samples']} | " + " | ".join(f"{a:.1f}-{b:.1f}" for a, b in zip(row["q05"], row["q95"]))
+                      + f" | {'-' if move is None else f'{move:.1f}'} |")
+        needed = convergence["samples_needed"]
+        md += ["", f"No later doubling moves a band end by more than {convergence['stable_to_m_s']:g} m/s from "
+               f"{needed} samples on." if needed is not None else
+               f"The last doubling still moves a band end by more than {convergence['stable_to_m_s']:g} m/s."]
     return "\n".join(md) + "\n"
 
 

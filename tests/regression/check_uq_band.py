@@ -48,8 +48,9 @@ for j, b in enumerate(band["band"]):
     col = [row[j] for row in vr]
     check(b["q05"] <= b["median"] <= b["q95"], f"{b['velocity_m_s']:g} m/s: 5 % <= median <= 95 %")
     check(min(col) <= b["q05"] and b["q95"] <= max(col), f"{b['velocity_m_s']:g} m/s: the band within the samples")
-check(set(band["convergence"]) >= {"samples", "first_half", "largest_band_end_move_m_s", "stable"},
-      "the convergence block")
+check(set(band["convergence"]) >= {"samples", "first_half", "largest_band_end_move_m_s", "stable", "by_samples",
+                                   "samples_needed"}, "the convergence block")
+check([r["samples"] for r in band["convergence"]["by_samples"]] == [4], "the band against the samples: one row at 4")
 check(band["lambert_jonas_p1"]["a"]["q05"] <= band["lambert_jonas_p1"]["a"]["q95"], "the fits' band ordered")
 
 # Resumable: a second make uq keeps every run (uhpc-macro --reuse) and runs no shot.

@@ -1,0 +1,54 @@
+#!/usr/bin/env python3
+"""pipelines/uq_band.py's band against the number of samples (no program runs; a second).
+
+Samples made so that the band's ends are known: with the first 4, 8 and all 10 samples. OpenTURNS'
+empirical quantile interpolates at the position q n - 1/2 and clips at the ends, so the 5 % and 95 %
+quantiles of n <= 10 values are their minimum and maximum, and the rows
+hold the running minimum and maximum and the moves between rows are their changes. A sample whose later
+values stay inside the first ones is stable from 4 samples; one whose last values widen the band by more
+than --stable-to is not stable, and `samples_needed` says so (None)."""
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "pipelines"))
+import uq_band  # noqa: E402
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def table(values):
+    return [{"runs": [{"residual_velocity_m_s": v, "outcome": "perforated"}]} for v in values]
+
+
+inside = [100.0, 110.0, 95.0, 105.0] + [100.0 + k for k in range(6)]  # 10 values within [95, 110]
+vr, bands, conv = uq_band.band([610.0], table(inside), 5.0)
+rows = conv["by_samples"]
+check([r["samples"] for r in rows] == [4, 8, 10], f"rows at 4, 8 and all 10 samples: {[r['samples'] for r in rows]}")
+check(all(abs(r["q05"][0] - 95.0) < 1e-12 and abs(r["q95"][0] - 110.0) < 1e-12 for r in rows),
+      "every row's band is the first four's, 95-110")
+check(rows[0]["largest_move_from_previous_m_s"] is None and all(r["largest_move_from_previous_m_s"] == 0.0 for r in rows[1:]),
+      "no move after the first row")
+check(conv["samples_needed"] == 4, f"stable from 4 samples ({conv['samples_needed']})")
+
+widening = inside[:9] + [120.0]  # the 10th value widens the band by 10 m/s
+vr, bands, conv = uq_band.band([610.0], table(widening), 5.0)
+rows = conv["by_samples"]
+check(abs(rows[-1]["largest_move_from_previous_m_s"] - 10.0) < 1e-12, f"the last row moves by 10 m/s ({rows[-1]['largest_move_from_previous_m_s']})")
+check(conv["samples_needed"] is None, f"not stable to 5 m/s ({conv['samples_needed']})")
+vr, bands, conv = uq_band.band([610.0], table(widening), 12.0)
+check(conv["samples_needed"] == 4, f"stable to 12 m/s from 4 samples ({conv['samples_needed']})")
+
+late = inside[:4] + [80.0] + inside[5:]  # the 5th value widens the band by 15 m/s, nothing after it
+vr, bands, conv = uq_band.band([610.0], table(late), 5.0)
+check(conv["samples_needed"] == 8, f"a widening between 4 and 8 samples: stable from 8 ({conv['samples_needed']})")
+
+print(f"{len(failures)} failure(s)")
+sys.exit(1 if failures else 0)
