@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """The band of the residual velocity and of the Lambert-Jonas fit over a set of SDEL samples (issue 51 item 2).
 
-usage: uq_band.py RUNS_DIR --sdels SDEL_DIR [--experiments TABLE5_CSV] [--paper TABLE8_CSV]
+usage: uq_band.py RUNS_DIR --sdels SDEL_DIR [--samples N] [--experiments TABLE5_CSV] [--paper TABLE8_CSV]
                   [--stable-to 5] --out DIR
 
 RUNS_DIR holds one directory per SDEL sample, s<k>/ (k = 000 ...), each with one run per impact velocity,
 v<v>/result.json (uhpc-macro); SDEL_DIR the handoffs sdel_<k>.json they were run with (make -C pipelines
-uq-sdel). Per velocity, the residual velocity of every sample (0 for a shot that did not perforate, as
+uq-sdel); --samples N takes the samples s000 ... s<N-1> only (the make target's UQ_SAMPLES: a folder that
+also holds the runs of a larger earlier N, perhaps at other velocities, is read as asked). Per velocity, the residual velocity of every sample (0 for a shot that did not perforate, as
 uhpc-compare-shots counts it; an undecided run is counted so and flagged) and its 5 %, 50 % and 95 %
 quantiles (OpenTURNS' empirical quantiles); per sample the Lambert-Jonas fit with p = 1
 (lambert_jonas.fit) and the same quantiles of a and v_bl.
@@ -64,10 +65,17 @@ def nearest(table, v, tolerance):
     return table[w] if abs(w - v) <= tolerance else None
 
 
-def collect(runs_dir, sdel_dir):
+def collect(runs_dir, sdel_dir, count=None):
     samples = sorted(p for p in pathlib.Path(runs_dir).glob("s[0-9][0-9][0-9]") if p.is_dir())
     if not samples:
         raise BadInput(f"{runs_dir}: no sample directory s<k>")
+    if count is not None:
+        wanted = [pathlib.Path(runs_dir) / f"s{k:03d}" for k in range(count)]
+        missing = [p.name for p in wanted if p not in samples]
+        if missing:
+            raise BadInput(f"{runs_dir}: --samples {count} asks for {', '.join(missing[:3])}"
+                           f"{' ...' if len(missing) > 3 else ''}, not there")
+        samples = wanted
     velocities = sorted({float(p.name[1:]) for s in samples for p in s.glob("v*") if p.is_dir()})
     table = []
     for s in samples:
@@ -187,11 +195,14 @@ def main():
     ap.add_argument("--experiments")
     ap.add_argument("--paper")
     ap.add_argument("--source", default="")
+    ap.add_argument("--samples", type=int, help="the first N samples only (default: every s<k> there)")
     ap.add_argument("--stable-to", type=float, default=5.0)
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     try:
-        velocities, table = collect(args.runs, args.sdels)
+        if args.samples is not None and args.samples < 1:
+            raise BadInput(f"--samples {args.samples}: must be at least 1")
+        velocities, table = collect(args.runs, args.sdels, args.samples)
         experiments = residual_by_velocity(args.experiments) if args.experiments else {}
         paper = residual_by_velocity(args.paper) if args.paper else {}
         vr, bands, convergence = band(velocities, table, args.stable_to)

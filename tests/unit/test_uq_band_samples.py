@@ -6,9 +6,14 @@ empirical quantile interpolates at the position q n - 1/2 and clips at the ends,
 quantiles of n <= 10 values are their minimum and maximum, and the rows
 hold the running minimum and maximum and the moves between rows are their changes. A sample whose later
 values stay inside the first ones is stable from 4 samples; one whose last values widen the band by more
-than --stable-to is not stable, and `samples_needed` says so (None)."""
+than --stable-to is not stable, and `samples_needed` says so (None). --samples N reads the first N samples
+of a folder that holds more, and refuses (exit 2) a folder that holds fewer."""
+import json
 import os
+import pathlib
+import subprocess
 import sys
+import tempfile
 
 import numpy as np
 
@@ -49,6 +54,29 @@ check(conv["samples_needed"] == 4, f"stable to 12 m/s from 4 samples ({conv['sam
 late = inside[:4] + [80.0] + inside[5:]  # the 5th value widens the band by 15 m/s, nothing after it
 vr, bands, conv = uq_band.band([610.0], table(late), 5.0)
 check(conv["samples_needed"] == 8, f"a widening between 4 and 8 samples: stable from 8 ({conv['samples_needed']})")
+
+script = pathlib.Path(__file__).resolve().parents[2] / "pipelines" / "uq_band.py"
+with tempfile.TemporaryDirectory() as tmp:
+    root = pathlib.Path(tmp)
+    (root / "sdels").mkdir()
+    for k, v in enumerate([100.0, 110.0, 95.0]):
+        (root / "sdels" / f"sdel_{k:03d}.json").write_text("{}")
+        run = root / "runs" / f"s{k:03d}" / "v610"
+        run.mkdir(parents=True)
+        (run / "result.json").write_text(json.dumps({"outcome": "perforated", "residual_velocity_m_s": v}))
+    (root / "runs" / "s002" / "v689").mkdir()  # a velocity only the third sample has: not read with --samples 2
+
+    def uq_band_cli(*extra):
+        r = subprocess.run([sys.executable, str(script), str(root / "runs"), "--sdels", str(root / "sdels"),
+                            "--out", str(root / "out"), *extra], capture_output=True, text=True)
+        return r.returncode, r.stderr
+
+    code, err = uq_band_cli("--samples", "2")
+    doc = json.loads((root / "out" / "uq_band.json").read_text()) if code == 0 else {}
+    check(code == 0 and [r["sample"] for r in doc["samples"]] == [0, 1] and doc["velocities_m_s"] == [610.0],
+          f"--samples 2 reads s000 and s001 at 610 m/s only (exit {code}: {err.strip()})")
+    code, err = uq_band_cli("--samples", "4")
+    check(code == 2 and "s003" in err, f"--samples 4 of 3 refused with exit 2 ({code}: {err.strip()})")
 
 print(f"{len(failures)} failure(s)")
 sys.exit(1 if failures else 0)
