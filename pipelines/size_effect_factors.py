@@ -5,7 +5,8 @@ usage: size_effect_factors.py --analysed DIR --generated DIR --out DIR
 
 DIR/size_<L>mm/cell_<k>/ of an analysed ensemble (uhpc-micro ensemble: summary.json, its peak stress) and
 of the same cells generated (uhpc-micro generate-ensemble with the same base seed: cell.json, the pores),
-joined cell by cell (the seeds must agree). For each cell, four descriptors of its pores:
+joined cell by cell (the seeds and porosities must agree). Only the cells the ensemble averages are used
+(not failed, bridged, their strain grid complete), so the sizes' means are ensemble.h5's. For each cell, four descriptors of its pores:
   largest_pore   the largest pore's diameter in mm (a weakest-flaw argument: the largest flaw grows with
                  the cell, up to the Burr law's truncation),
   pore_count     the number of pores,
@@ -17,8 +18,9 @@ slope predicts from the descriptor's change of mean between the smallest and the
 measured one. This is a correlation across the cells as they were drawn, not an experiment that changes
 one property: a descriptor with no within-size correlation cannot be what makes the smaller cells
 stronger; one with a correlation is a candidate for a run that changes it alone.
-Also the boundary-layer form peak(L) = P_inf + C / L fitted to the size means (weighted by 1 / se^2).
-Writes size_effect_factors.{json,md}; exit 2 on missing or mismatched cells.
+Also the boundary-layer form peak(L) = P_inf + C / L fitted to the size means (weighted by 1 / se^2; with
+three sizes or more). Needs two sizes of at least three averaged cells each.
+Writes size_effect_factors.{json,md}; exit 2 on missing, unreadable or mismatched cells (the file and key named).
 """
 import argparse
 import json
@@ -27,13 +29,10 @@ import sys
 
 import numpy as np
 
+from uq_inputs import BadInput, read_json
+
 DESCRIPTORS = ("largest_pore", "pore_count", "porosity", "worst_section")
 SECTION_SAMPLES = 4001  # cross-sections per cell side: the chord sum is sampled, pores are >= 8 spacings wide
-
-
-def fail(message):
-    print(f"size_effect_factors: {message}", file=sys.stderr)
-    sys.exit(2)
 
 
 def worst_section(cell):
@@ -50,29 +49,50 @@ def worst_section(cell):
     return float(chords.max() / side)
 
 
+def averaged(summary):
+    """The ensemble's own rule (ensemble_commands.cpp, averaged()): not failed, bridged, its grid complete."""
+    grid = summary.get("grid")
+    return summary.get("status") != "failed" and isinstance(grid, dict) and grid.get("complete") is True
+
+
 def read_cells(analysed, generated):
-    cells = []
+    cells, left_out = [], 0
     for size_dir in sorted(analysed.glob("size_*")):
         for cell_dir in sorted(size_dir.glob("cell_*")):
             summary_file = cell_dir / "summary.json"
-            cell_file = generated / size_dir.name / cell_dir.name / "cell.json"
             if not summary_file.is_file():
                 continue  # an unfinished cell
-            if not cell_file.is_file():
-                fail(f"{cell_file}: missing (generate the same ensemble with uhpc-micro generate-ensemble)")
-            summary, cell = json.loads(summary_file.read_text()), json.loads(cell_file.read_text())
-            if summary["cell"]["seed"] != cell["seed"]:
-                fail(f"{cell_file}: key 'seed' is {cell['seed']}, the analysed cell's is {summary['cell']['seed']}")
-            if abs(cell["porosity"]["achieved"] - summary["cell"]["porosity"]) > 1e-12:
-                fail(f"{cell_file}: key 'porosity.achieved' is {cell['porosity']['achieved']}, the analysed cell's is "
-                     f"{summary['cell']['porosity']}: not the same pores (another pore law or generator)")
-            cells.append({"size_m": summary["cell"]["size_m"], "peak_MPa": summary["peak_stress_Pa"] / 1e6,
-                          "largest_pore": 1e3 * cell["largest_pore_diameter_m"],
-                          "pore_count": float(cell["pore_count"]), "porosity": summary["cell"]["porosity"],
-                          "worst_section": worst_section(cell)})
-    if not cells:
-        fail(f"{analysed}: no analysed cell (size_*/cell_*/summary.json)")
-    return cells
+            cell_file = generated / size_dir.name / cell_dir.name / "cell.json"
+            summary = read_json(summary_file, "an analysed cell")
+            cell = read_json(cell_file, "the same cell generated: uhpc-micro generate-ensemble with the same base seed")
+            try:
+                if summary["cell"]["seed"] != cell["seed"]:
+                    raise BadInput(f"{cell_file}: key 'seed' is {cell['seed']}, the analysed cell's is {summary['cell']['seed']}")
+                if abs(cell["porosity"]["achieved"] - summary["cell"]["porosity"]) > 1e-12:
+                    raise BadInput(f"{cell_file}: key 'porosity.achieved' is {cell['porosity']['achieved']}, the analysed "
+                                   f"cell's is {summary['cell']['porosity']}: not the same pores (another pore law or generator)")
+                if not averaged(summary):
+                    left_out += 1
+                    continue
+                cells.append({"size_m": summary["cell"]["size_m"], "peak_MPa": summary["peak_stress_Pa"] / 1e6,
+                              "largest_pore": 1e3 * cell["largest_pore_diameter_m"],
+                              "pore_count": float(cell["pore_count"]), "porosity": summary["cell"]["porosity"],
+                              "worst_section": worst_section(cell)})
+            except KeyError as e:
+                raise BadInput(f"{summary_file} or {cell_file}: no key {e}")
+    sizes = {}
+    for c in cells:
+        sizes[c["size_m"]] = sizes.get(c["size_m"], 0) + 1
+    if len(sizes) < 2 or min(sizes.values()) < 3:
+        raise BadInput(f"{analysed}: needs two sizes of at least three averaged cells each "
+                       f"(cells per size: {sizes or 'none'}; {left_out} left out as the ensemble leaves them)")
+    return cells, left_out
+
+
+def pearson(x, y):
+    """Pearson's r, None where either is constant (no correlation to speak of, and no NaN in the JSON)."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    return float(np.corrcoef(x, y)[0, 1]) if len(x) > 2 and x.std() > 0 and y.std() > 0 else None
 
 
 def mean_se(x):
@@ -96,7 +116,7 @@ def analyse(cells):
         for L in sizes:
             xs = np.array([c[key] for c in groups[L]])
             ys = np.array([c["peak_MPa"] for c in groups[L]])
-            r_size[f"{1e3 * L:g}"] = float(np.corrcoef(xs, ys)[0, 1]) if len(xs) > 2 and xs.std() > 0 else None
+            r_size[f"{1e3 * L:g}"] = pearson(xs, ys)
             x += list(xs - xs.mean())
             y += list(ys - ys.mean())
         x, y = np.array(x), np.array(y)
@@ -105,18 +125,24 @@ def analyse(cells):
         dof = len(x) - len(sizes) - 1
         slope_se = float(np.sqrt((y - slope * x) @ (y - slope * x) / dof / sxx)) if slope is not None and dof > 0 else None
         change = per_size[-1][key] - per_size[0][key]
+        se_change = float(np.hypot(per_size[-1][key + "_se"], per_size[0][key + "_se"]))
         factors[key] = {"r_within_size": r_size,
-                        "r_pooled": float(np.corrcoef(x, y)[0, 1]) if sxx > 0 else None,
+                        "r_pooled": pearson(x, y),
                         "slope_MPa": slope, "slope_se_MPa": slope_se, "mean_change": change,
                         "predicted_size_effect_MPa": None if slope is None else slope * change,
-                        "predicted_size_effect_se_MPa": None if slope_se is None else abs(change) * slope_se}
-    inv_L = np.array([1.0 / r["size_m"] for r in per_size])
-    peaks = np.array([r["peak_MPa"] for r in per_size])
-    w = 1.0 / np.array([r["peak_MPa_se"] for r in per_size]) ** 2
-    A = np.c_[np.ones_like(inv_L), inv_L] * np.sqrt(w)[:, None]
-    (p_inf, c), *_ = np.linalg.lstsq(A, peaks * np.sqrt(w), rcond=None)
-    chi2 = float(np.sum(w * (peaks - p_inf - c * inv_L) ** 2))
-    boundary = {"P_inf_MPa": float(p_inf), "C_MPa_m": float(c), "chi2": chi2, "dof": len(sizes) - 2}
+                        # both the slope's and the change of mean's errors
+                        "predicted_size_effect_se_MPa": None if slope_se is None
+                        else float(np.hypot(change * slope_se, slope * se_change))}
+    boundary = None
+    se = np.array([r["peak_MPa_se"] for r in per_size])
+    if len(sizes) >= 3 and np.all(se > 0):
+        inv_L = np.array([1.0 / r["size_m"] for r in per_size])
+        peaks = np.array([r["peak_MPa"] for r in per_size])
+        w = 1.0 / se ** 2
+        A = np.c_[np.ones_like(inv_L), inv_L] * np.sqrt(w)[:, None]
+        (p_inf, c), *_ = np.linalg.lstsq(A, peaks * np.sqrt(w), rcond=None)
+        boundary = {"P_inf_MPa": float(p_inf), "C_MPa_m": float(c),
+                    "chi2": float(np.sum(w * (peaks - p_inf - c * inv_L) ** 2)), "dof": len(sizes) - 2}
     return {"per_size": per_size, "measured_size_effect_MPa": measured,
             "measured_size_effect_se_MPa": float(np.hypot(per_size[-1]["peak_MPa_se"], per_size[0]["peak_MPa_se"])),
             "factors": factors, "boundary_layer_fit": boundary}
@@ -142,8 +168,13 @@ def markdown(result):
                      f"{fmt(f['slope_se_MPa'], '.2g')} | {fmt(f['predicted_size_effect_MPa'], '+.2f')} +- "
                      f"{fmt(f['predicted_size_effect_se_MPa'], '.2f')} |")
     b = result["boundary_layer_fit"]
-    lines += ["", f"Boundary-layer form peak = P_inf + C / L: P_inf {b['P_inf_MPa']:.2f} MPa, C {1e3 * b['C_MPa_m']:.2f} "
-                  f"MPa mm, chi2 {b['chi2']:.2f} on {b['dof']} degrees of freedom"]
+    lines += ["", "Boundary-layer form peak = P_inf + C / L: " + (
+        "not fitted (fewer than three sizes)" if b is None else
+        f"P_inf {b['P_inf_MPa']:.2f} MPa, C {1e3 * b['C_MPa_m']:.2f} MPa mm, chi2 {b['chi2']:.2f} on {b['dof']} "
+        "degrees of freedom")]
+    if result["cells_left_out"]:
+        lines += ["", f"{result['cells_left_out']} cell(s) left out as the ensemble leaves them (failed, not bridged "
+                      "or an incomplete grid)."]
     return "\n".join(lines) + "\n"
 
 
@@ -153,10 +184,16 @@ def main():
     parser.add_argument("--generated", required=True, type=pathlib.Path)
     parser.add_argument("--out", required=True, type=pathlib.Path)
     args = parser.parse_args()
-    for d in (args.analysed, args.generated):
-        if not d.is_dir():
-            fail(f"{d}: not a directory")
-    result = analyse(read_cells(args.analysed, args.generated))
+    try:
+        for d in (args.analysed, args.generated):
+            if not d.is_dir():
+                raise BadInput(f"{d}: not a directory")
+        cells, left_out = read_cells(args.analysed, args.generated)
+    except BadInput as e:
+        print(f"size_effect_factors: {e}", file=sys.stderr)
+        sys.exit(2)
+    result = analyse(cells)
+    result["cells_left_out"] = left_out
     args.out.mkdir(parents=True, exist_ok=True)
     (args.out / "size_effect_factors.json").write_text(json.dumps(result, indent=2) + "\n")
     (args.out / "size_effect_factors.md").write_text(markdown(result))

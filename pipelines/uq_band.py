@@ -6,18 +6,21 @@ usage: uq_band.py RUNS_DIR --sdels SDEL_DIR [--samples N] [--experiments TABLE5_
 
 RUNS_DIR holds one directory per SDEL sample, s<k>/ (k = 000 ...), each with one run per impact velocity,
 v<v>/result.json (uhpc-macro); SDEL_DIR the handoffs sdel_<k>.json they were run with (make -C pipelines
-uq-sdel); --samples N takes the samples s000 ... s<N-1> only (the make target's UQ_SAMPLES: a folder that
-also holds the runs of a larger earlier N, perhaps at other velocities, is read as asked). Per velocity, the residual velocity of every sample (0 for a shot that did not perforate, as
+uq-sdel); --samples N takes the samples s000 ... s<N-1> only and --velocities V1,V2,... those impact
+velocities only (the make target's UQ_SAMPLES and UQ_VELOCITIES: a folder that also holds the runs of an
+earlier, larger study is read as asked). Per velocity, the residual velocity of every sample (0 for a shot that did not perforate, as
 uhpc-compare-shots counts it; an undecided run is counted so and flagged) and its 5 %, 50 % and 95 %
 quantiles (OpenTURNS' empirical quantiles); per sample the Lambert-Jonas fit with p = 1
 (lambert_jonas.fit) and the same quantiles of a and v_bl.
 
 Convergence: the band's ends with the first half of the samples against all of them. The band is stable
 to --stable-to m/s (default 5) when no end of any velocity's band moves by more than that between the two;
-the answer is written with the largest move. The same with the first 4, 8, 16, ... samples and all of
-them (`by_samples`): the largest move of a band end from one row to the next, and the number of samples
-from which no later doubling moves an end by more than --stable-to (`samples_needed`, none while the last
-doubling still does), so the number of samples a stable band needs is read off one run.
+the answer is written with the largest move. The same with the first 4, 8, 16, ... samples, each a doubling
+of the row before, up to the largest not above the samples there (`by_samples`): the largest move of a band
+end from one row to the next, and the number of samples from which no later doubling moves an end by more
+than --stable-to (`samples_needed`: none with fewer than two rows or while the last doubling still does),
+so the number of samples a stable band needs is read off one run (with UQ_SAMPLES 4 x 2^k the last row is
+all the samples, and the two checks compare the same halves).
 
 Writes DIR/uq_band.json (format uhpc-uq-band/1: the samples and their SDEL files' hashes, each run's
 outcome and provenance hash, the bands, the fits, the convergence) and DIR/uq_band.md (the band beside
@@ -65,7 +68,7 @@ def nearest(table, v, tolerance):
     return table[w] if abs(w - v) <= tolerance else None
 
 
-def collect(runs_dir, sdel_dir, count=None):
+def collect(runs_dir, sdel_dir, count=None, only_velocities=None):
     samples = sorted(p for p in pathlib.Path(runs_dir).glob("s[0-9][0-9][0-9]") if p.is_dir())
     if not samples:
         raise BadInput(f"{runs_dir}: no sample directory s<k>")
@@ -76,7 +79,8 @@ def collect(runs_dir, sdel_dir, count=None):
             raise BadInput(f"{runs_dir}: --samples {count} asks for {', '.join(missing[:3])}"
                            f"{' ...' if len(missing) > 3 else ''}, not there")
         samples = wanted
-    velocities = sorted({float(p.name[1:]) for s in samples for p in s.glob("v*") if p.is_dir()})
+    velocities = sorted(only_velocities) if only_velocities else sorted(
+        {float(p.name[1:]) for s in samples for p in s.glob("v*") if p.is_dir()})
     table = []
     for s in samples:
         sdel = pathlib.Path(sdel_dir) / f"sdel_{s.name[1:]}.json"
@@ -123,15 +127,15 @@ def band(velocities, table, stable_to):
 
 
 def band_by_samples(vr):
-    """The band's ends of every velocity with the first 4, 8, 16, ... samples and with all of them, and the
-    largest move of an end from the row before (None in the first row)."""
+    """The band's ends of every velocity with the first 4, 8, 16, ... samples (doublings, up to n; n alone
+    below 4), and the largest move of an end from the row before (None in the first row)."""
     n = vr.shape[0]
     counts = []
     k = 4
-    while k < n:
+    while k <= n:
         counts.append(k)
         k *= 2
-    counts.append(n)
+    counts = counts or [n]
     rows, previous = [], None
     for k in counts:
         ends = [quantiles(vr[:k, j]) for j in range(vr.shape[1])]
@@ -185,6 +189,8 @@ def markdown(bands, fit_summary, convergence, experiments, paper, source):
         md += ["", f"No later doubling moves a band end by more than {convergence['stable_to_m_s']:g} m/s from "
                f"{needed} samples on." if needed is not None else
                f"The last doubling still moves a band end by more than {convergence['stable_to_m_s']:g} m/s."]
+    else:
+        md += ["", "Fewer than two doublings of 4 samples: the band against the samples needs 8 or more."]
     return "\n".join(md) + "\n"
 
 
@@ -196,13 +202,21 @@ def main():
     ap.add_argument("--paper")
     ap.add_argument("--source", default="")
     ap.add_argument("--samples", type=int, help="the first N samples only (default: every s<k> there)")
+    ap.add_argument("--velocities", help="these impact velocities only, m/s, comma- or space-separated "
+                                         "(default: every v<v> there)")
     ap.add_argument("--stable-to", type=float, default=5.0)
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     try:
         if args.samples is not None and args.samples < 1:
             raise BadInput(f"--samples {args.samples}: must be at least 1")
-        velocities, table = collect(args.runs, args.sdels, args.samples)
+        only = None
+        if args.velocities:
+            try:
+                only = [float(v) for v in args.velocities.replace(",", " ").split()]
+            except ValueError:
+                raise BadInput(f"--velocities '{args.velocities}': not a list of numbers (m/s)")
+        velocities, table = collect(args.runs, args.sdels, args.samples, only)
         experiments = residual_by_velocity(args.experiments) if args.experiments else {}
         paper = residual_by_velocity(args.paper) if args.paper else {}
         vr, bands, convergence = band(velocities, table, args.stable_to)
