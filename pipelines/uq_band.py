@@ -1,15 +1,15 @@
 #!/usr/bin/env python3
 """The band of the residual velocity and of the Lambert-Jonas fit over a set of SDEL samples (issue 51 item 2).
 
-usage: uq_band.py RUNS_DIR --sdels SDEL_DIR [--samples N] [--experiments TABLE5_CSV] [--paper TABLE8_CSV]
-                  [--stable-to 5] --out DIR
+usage: uq_band.py RUNS_DIR --sdels SDEL_DIR [--samples N] [--velocities "V1 V2 ..."]
+                  [--experiments TABLE5_CSV] [--paper TABLE8_CSV] [--stable-to 5] --out DIR
 
 RUNS_DIR holds one directory per SDEL sample, s<k>/ (k = 000 ...), each with one run per impact velocity,
 v<v>/result.json (uhpc-macro); SDEL_DIR the handoffs sdel_<k>.json they were run with (make -C pipelines
-uq-sdel); --samples N takes the samples s000 ... s<N-1> only and --velocities V1,V2,... those impact
-velocities only (the make target's UQ_SAMPLES and UQ_VELOCITIES: a folder that also holds the runs of an
-earlier, larger study is read as asked). Per velocity, the residual velocity of every sample (0 for a shot that did not perforate, as
-uhpc-compare-shots counts it; an undecided run is counted so and flagged) and its 5 %, 50 % and 95 %
+uq-sdel); --samples N takes the samples s000 ... s<N-1> only and --velocities those impact velocities
+only (the make target's UQ_SAMPLES and UQ_VELOCITIES: a folder that also holds the runs of an earlier,
+larger study is read as asked). Per velocity, the residual velocity of every sample (0 for a shot that
+did not perforate, as uhpc-compare-shots counts it; an undecided run is counted so and flagged) and its 5 %, 50 % and 95 %
 quantiles (OpenTURNS' empirical quantiles); per sample the Lambert-Jonas fit with p = 1
 (lambert_jonas.fit) and the same quantiles of a and v_bl.
 
