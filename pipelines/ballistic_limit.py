@@ -4,7 +4,7 @@ that does not perforate and the lowest that does, bracketed to a stated width.
 
 usage: ballistic_limit.py --macro UHPC_MACRO --config CASE.json [--sdel SDEL.json] [--set key=value ...]
                           --low V_LOW --high V_HIGH [--width 10] [--end-time T] [--max-end-time T]
-                          [--launch PREFIX] --out DIR
+                          [--launch PREFIX] [--checkpoint-every-min M] --out DIR
 
 Each run is uhpc-macro at one velocity (rounded to 1 m/s) in DIR/v<velocity>/, made, kept or carried on
 as pipelines/carried_shot.py says: a run whose result.json exists is read, not rerun, so an interrupted
@@ -97,13 +97,13 @@ def main():
     if args.max_end_time is None:
         args.max_end_time = args.end_time
     if not (0 < args.low < args.high <= args.max_velocity) or args.width <= 0 or args.max_failures < 0 \
-            or not 0 < args.end_time <= args.max_end_time:
+            or not 0 < args.end_time <= args.max_end_time or not args.checkpoint_every_min >= 0:
         print("ballistic_limit.py: need 0 < --low < --high <= --max-velocity, --width > 0, --max-failures >= 0, "
-              "0 < --end-time <= --max-end-time", file=sys.stderr)
+              "0 < --end-time <= --max-end-time, --checkpoint-every-min >= 0", file=sys.stderr)
         sys.exit(2)
     pathlib.Path(args.out).mkdir(parents=True, exist_ok=True)
     args.shot = Shot("ballistic_limit.py", args.macro, args.launch, args.config, args.sdel, sets, args.end_time,
-                     args.max_end_time)
+                     args.max_end_time, args.checkpoint_every_min)
     runs = []
     lo, hi = int(round(args.low)), int(round(args.high))
     step = hi - lo

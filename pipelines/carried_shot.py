@@ -3,7 +3,8 @@
 was already made from the same inputs, and carried on from its checkpoint while it is undecided.
 
 usage: carried_shot.py --macro UHPC_MACRO --config CASE.json [--sdel SDEL.json] [--set key=value ...]
-                       --velocity V [--end-time T] [--max-end-time T] [--launch PREFIX] --out DIR
+                       --velocity V [--end-time T] [--max-end-time T] [--launch PREFIX]
+                       [--checkpoint-every-min M] --out DIR
 
 The run goes to DIR with run.end_time_s = T (--end-time, else a --set run.end_time_s=T among the sets,
 else the case's own run.end_time_s). A run still undecided there (the sphere neither through, nor stopped,
@@ -12,10 +13,13 @@ on up to --max-end-time (default: the end time, no extension). A run whose resul
 it was made from the inputs this command would give it at one end time of that ladder (its
 provenance.config_hash against `uhpc-macro ... --inputs-hash`, either line), carried on if it is still
 undecided below --max-end-time, and refused otherwise (exit 2, naming it: another case, SDEL, --set or
-end time). A run killed before its end time with a checkpoint to go on from (DIR/config.json of these
-inputs at an end time of the ladder, and DIR/checkpoint.h5: a run killed while it was carried on) goes on
-from that checkpoint, so its finished part is not lost; uhpc-macro refuses a checkpoint written by another
-build (exit 2). A run that failed numerically before (DIR/diagnostic.json and DIR/config.json of the same
+end time). Each run writes DIR/checkpoint.h5 every --checkpoint-every-min minutes of wall time (default
+10; 0: none), which is not an input of the run (uhpc-macro --checkpoint-every-min). A run killed before
+its end time with a checkpoint to go on from (DIR/config.json of these inputs at an end time of the
+ladder, and DIR/checkpoint.h5: one the clock wrote, or the last state it was carried on from) goes on from
+that checkpoint, so at most the minutes since it are lost; uhpc-macro refuses a checkpoint written by
+another build (exit 2). A run resumed so rebuilds its lazy shape rows where the killed one had kept them:
+it differs from an unstopped run within solver.shape_reuse_tolerance. A run that failed numerically before (DIR/diagnostic.json and DIR/config.json of the same
 inputs) is not run again (exit 1; remove DIR to run it again).
 --launch puts a launcher before each run of uhpc-macro, split as a shell would (e.g. "srun -N1 -n1 -c2
 --exclusive"); a kept run launches nothing.
@@ -41,9 +45,10 @@ class Shot:
     """How a study runs its shots: the program, its launcher, the case, the SDEL, the --set overrides
     (without the end time) and the ladder of end times an undecided run is carried along."""
 
-    def __init__(self, prog, macro, launch, config, sdel, sets, end_time, max_end_time):
+    def __init__(self, prog, macro, launch, config, sdel, sets, end_time, max_end_time, checkpoint_every_min=0.0):
         self.prog, self.macro, self.launch, self.config, self.sdel = prog, macro, launch, config, sdel
         self.sets, self.end_time, self.max_end_time = sets, end_time, max_end_time
+        self.checkpoint_every_min = checkpoint_every_min
 
     def end_times(self):
         """The end times a run may be carried to: the end time, doubled up to the maximum."""
@@ -87,9 +92,9 @@ class Shot:
     def interrupted(self, velocity, out):
         """The end time of a run in `out` that was stopped before it (no result.json) but can go on from its
         checkpoint: an undecided run being carried on when it was killed (its config.json, written at its
-        start, of these inputs at one end time of the ladder, and the checkpoint.h5 it went on from, which
-        uhpc-macro rewrites only at an end time, or at run.checkpoint_interval_steps). None otherwise: a
-        fresh run killed before its end time without periodic checkpoints leaves none and starts again."""
+        start, of these inputs at one end time of the ladder, and a checkpoint.h5, which uhpc-macro writes
+        at an end time, every --checkpoint-every-min minutes, or at run.checkpoint_interval_steps). None
+        otherwise: a run killed before its first checkpoint leaves none and starts again."""
         config, checkpoint = out / "config.json", out / "checkpoint.h5"
         if not (config.is_file() and checkpoint.is_file()):
             return None
@@ -101,6 +106,8 @@ class Shot:
         finished, else the failed run's exit code (1, with its diagnostic); stops the study on any other
         end."""
         cmd = shlex.split(self.launch) + self.command(velocity, end_time) + ["-q", "--out", str(out)]
+        if self.checkpoint_every_min > 0:  # not an input of the run: kept out of command(), so out of its hash
+            cmd += ["--checkpoint-every-min", f"{self.checkpoint_every_min:g}"]
         if restart:
             cmd.append("--restart")
         print(f"{self.prog}:", " ".join(cmd), flush=True)
@@ -176,6 +183,9 @@ def add_shot_arguments(ap):
     ap.add_argument("--config", required=True)
     ap.add_argument("--sdel")
     ap.add_argument("--set", action="append", default=[])
+    ap.add_argument("--checkpoint-every-min", type=float, default=10.0,
+                    help="each run writes its checkpoint every M minutes of wall time, so that a killed run goes on "
+                         "from it (default 10; 0: none)")
 
 
 def main():
@@ -193,12 +203,13 @@ def main():
         velocity_ok = float(args.velocity) > 0
     except ValueError:
         velocity_ok = False
-    if not (0 < end_time <= max_end_time) or not velocity_ok:
-        print(f"{prog}: need 0 < end time ({end_time:g}) <= --max-end-time ({max_end_time:g}) and --velocity > 0 "
-              f"({args.velocity})",
+    if not (0 < end_time <= max_end_time) or not velocity_ok or not args.checkpoint_every_min >= 0:
+        print(f"{prog}: need 0 < end time ({end_time:g}) <= --max-end-time ({max_end_time:g}), --velocity > 0 "
+              f"({args.velocity}) and --checkpoint-every-min >= 0 ({args.checkpoint_every_min:g})",
               file=sys.stderr)
         sys.exit(2)
-    shot = Shot(prog, args.macro, args.launch, args.config, args.sdel, sets, end_time, max_end_time)
+    shot = Shot(prog, args.macro, args.launch, args.config, args.sdel, sets, end_time, max_end_time,
+                args.checkpoint_every_min)
     r, failure = shot.decide(args.velocity, pathlib.Path(args.out))
     if r is None:
         if failure is None:

@@ -1,16 +1,21 @@
 // uhpc-macro: one 3D penetration run (docs/architecture.md section 2).
 //
 //   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q] [--restart | --reuse | --reuse-check]
+//              [--checkpoint-every-min M]
 //   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --inputs-hash
 //
 // Writes DIR/result.json, DIR/history.csv and DIR/fields.h5 + DIR/fields.xdmf (ParaView); on a
 // numerical failure, the last good state in fields.h5 and DIR/diagnostic.json (exit code 1). Bad input:
 // one line naming the file, key and reason, exit code 2. See macro/README.md.
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "macro_run.hpp"
 #include "uhpc/cli.hpp"
+#include "uhpc/errors.hpp"
 #include "uhpc/logging.hpp"
 
 int main(int argc, char** argv) {
@@ -25,8 +30,15 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "output directory (required unless --inputs-hash)");
   app.add_flag("-q,--quiet", args.quiet, "warnings and errors only");
   app.add_flag("--restart", args.restart,
-               "go on from OUT/checkpoint.h5 (a run of the same case, --sdel, --set and build with "
-               "run.checkpoint_interval_steps > 0) instead of starting at t = 0");
+               "go on from OUT/checkpoint.h5 (written by a run of the same case, --sdel, --set and build: "
+               "at run.checkpoint_interval_steps, --checkpoint-every-min, or at an undecided end) instead of "
+               "starting at t = 0");
+  double checkpoint_every_min = 0.0;
+  app.add_option("--checkpoint-every-min", checkpoint_every_min,
+                 "write OUT/checkpoint.h5 every this many minutes of wall time (0: never), so that a killed run "
+                 "goes on with --restart; not an input of the run (its numbers do not change), and a run "
+                 "resumed from such a checkpoint differs from the unstopped one within "
+                 "solver.shape_reuse_tolerance");
   app.add_flag("--inputs-hash", args.inputs_hash,
                "print the hash of this run's inputs (the case with --set, the files it reads: result.json's "
                "provenance.config_hash), then on a second line the same in the scheme before 2026-12-06 "
@@ -45,6 +57,10 @@ int main(int argc, char** argv) {
     if (out.empty() && !args.inputs_hash) throw CLI::RequiredError("--out");
     uhpc::init_logging("uhpc-macro", args.quiet ? uhpc::Verbosity::Quiet : uhpc::Verbosity::Normal);
     args.out = out;
+    if (!(checkpoint_every_min >= 0.0 && std::isfinite(checkpoint_every_min)))
+      throw uhpc::InputError(fmt::format("--checkpoint-every-min {}: not a number of minutes >= 0 (0: none)",
+                                         checkpoint_every_min));
+    args.checkpoint_every_s = 60.0 * checkpoint_every_min;
     uhpc::macro::run_macro(args);
     return uhpc::kExitOk;
   });

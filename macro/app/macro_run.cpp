@@ -278,10 +278,13 @@ void run_macro(const MacroRunArgs& args) {
     fields.write(solver);
     history.add(solver);
   }
-  // Checkpoints drop the shape cache where they are written, so the run that writes them and a run
-  // resumed from one rebuild every row from the same state (ExplicitSolver::resume).
-  const auto write_checkpoint_now = [&] {
-    solver.drop_shape_cache();
+  // The checkpoints of run.checkpoint_interval_steps and of the end drop the shape cache where they are
+  // written, so the run that writes them and a run resumed from one rebuild every row from the same state
+  // (ExplicitSolver::resume). The wall clock's (--checkpoint-every-min) keep it: when they fire depends on
+  // the machine, and the run's numbers must not.
+  enum class ShapeRows : bool { Keep, Drop };
+  const auto write_checkpoint_now = [&](ShapeRows rows) {
+    if (rows == ShapeRows::Drop) solver.drop_shape_cache();
     history.save(args.out / "history.csv");
     write_checkpoint(checkpoint_file, {solver.checkpoint(), history.text(), history.rows(), impact, balance,
                                        fields.state(), inputs.restart_hash, checkpoint_build()});
@@ -304,6 +307,7 @@ void run_macro(const MacroRunArgs& args) {
   }
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  double last_checkpoint_s = 0.0;  // wall time of the last checkpoint (the run's start before the first)
 
   while (!finished()) {
     if (!solver.step()) {
@@ -328,8 +332,13 @@ void run_macro(const MacroRunArgs& args) {
                    solver.steps(), solver.time() * 1e6, solver.steps() / elapsed(), solver.sphere().x[2] * 1e3,
                    solver.sphere().v[2], solver.contact().particles_in_contact);
     }
-    if (settings.run.checkpoint_interval_steps > 0 && solver.steps() % settings.run.checkpoint_interval_steps == 0)
-      write_checkpoint_now();
+    if (settings.run.checkpoint_interval_steps > 0 && solver.steps() % settings.run.checkpoint_interval_steps == 0) {
+      write_checkpoint_now(ShapeRows::Drop);
+      last_checkpoint_s = elapsed();
+    } else if (args.checkpoint_every_s > 0.0 && elapsed() - last_checkpoint_s >= args.checkpoint_every_s) {
+      write_checkpoint_now(ShapeRows::Keep);
+      last_checkpoint_s = elapsed();
+    }
     const auto now_ns = static_cast<std::uint64_t>(std::llround(std::fmin(solver.time(), settings.run.end_time_s) * 1e9));
     if (now_ns > done_ns) {
       progress.advance(now_ns - done_ns);
@@ -358,7 +367,7 @@ void run_macro(const MacroRunArgs& args) {
   // A decided run is complete: its results replace the checkpoint. An undecided one keeps its last state
   // as one, so that --restart with a later run.end_time_s carries it on instead of starting again; it is
   // written first, so that a result.json on disk always means a finished run.
-  if (!impact.decided()) write_checkpoint_now();
+  if (!impact.decided()) write_checkpoint_now(ShapeRows::Drop);
   write_text_atomic(args.out / "result.json", result.dump(2) + "\n");
   if (impact.decided()) fs::remove(checkpoint_file);
   spdlog::info("{} steps ({} repeated) in {:.2f} s, {:.3g} particle-steps/s; sphere v_z {:.2f} m/s ({}); energy "

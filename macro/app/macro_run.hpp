@@ -17,8 +17,14 @@ struct MacroRunArgs {
   std::filesystem::path out;
   bool quiet = false;  // no progress line
   // Go on from out/checkpoint.h5 (written by a run of the same case, --sdel and --set, and the same
-  // build, with run.checkpoint_interval_steps > 0) instead of starting at t = 0.
+  // build: at run.checkpoint_interval_steps, by the clock below, or at an undecided end) instead of
+  // starting at t = 0.
   bool restart = false;
+  // Write out/checkpoint.h5 every this many seconds of wall time (0: never), for --restart after a kill.
+  // Not an input of the run: the checkpoints keep the shape cache, so the run's numbers do not depend on
+  // when the clock fired (run.checkpoint_interval_steps, an input, drops it, so that a resumed run
+  // equals the unstopped one bit for bit).
+  double checkpoint_every_s = 0.0;
   // Only print the hash of the inputs (what result.json's provenance.config_hash would be) and return.
   bool inputs_hash = false;
   // A finished run already in out (its result.json) is kept when it was made from these inputs (the same

@@ -37,6 +37,9 @@ uhpc_bad_input_case(NAME macro_disc_without_radius
 uhpc_bad_input_case(NAME macro_zero_output_interval
   STDERR "error: data/macro_elastic_block.json: key 'run.output_interval_steps': value 0 is out of range, must be >= 1"
   COMMAND ${_macro} ${_macro_case} --set run.output_interval_steps=0)
+uhpc_bad_input_case(NAME macro_negative_checkpoint_clock
+  STDERR "error: --checkpoint-every-min -1: not a number of minutes >= 0 (0: none)"
+  COMMAND ${_macro} ${_macro_case} --checkpoint-every-min -1)
 uhpc_bad_input_case(NAME macro_missing_out
   STDERR "error: --out is required"
   COMMAND ${_macro} --config data/macro_elastic_block.json)

@@ -23,8 +23,8 @@ SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "pipelines" / "ballistic_
 STAND_IN = """#!{python}
 import hashlib, json, pathlib, sys
 a = sys.argv[1:]
-inputs = [s for i, s in enumerate(a) if s not in ("-q", "--out", "--inputs-hash", "--restart")
-          and (i == 0 or a[i - 1] != "--out")]
+inputs = [s for i, s in enumerate(a) if s not in ("-q", "--out", "--inputs-hash", "--restart", "--checkpoint-every-min")
+          and (i == 0 or a[i - 1] not in ("--out", "--checkpoint-every-min"))]
 h = hashlib.sha1(" ".join(inputs).encode()).hexdigest()[:16]
 if "--inputs-hash" in a:
     print(h)
@@ -37,6 +37,9 @@ if restart and not (out / "checkpoint.h5").exists():
     sys.exit(2)
 calls = out.parent / ("restarts.txt" if restart else "calls.txt")
 calls.write_text((calls.read_text() if calls.exists() else "") + f"{{v}}\\n")
+if "--checkpoint-every-min" in a:  # the clock's checkpoints asked for, logged beside the runs
+    clock = out.parent / "clock.txt"
+    clock.write_text((clock.read_text() if clock.exists() else "") + a[a.index("--checkpoint-every-min") + 1] + "\\n")
 out.mkdir(parents=True, exist_ok=True)
 (out / "config.json").write_text(json.dumps({{"hash": h}}))
 if v in {fail_at}:

@@ -6,7 +6,10 @@ result says so) and is carried on further when the maximum is raised; the end ti
 run.end_time_s (not overridden by the ladder) or from the case; given twice and different, refused (exit
 2); a run made from other inputs refused (exit 2), untouched; a numerical failure exits 1 and is not
 rerun; a killed run exits 3; a run killed while carried on goes on from its checkpoint on resume, one
-without a checkpoint starts over; a decided run launches through --launch, a kept one does not."""
+without a checkpoint starts over; every run asks uhpc-macro for its clock's checkpoints (10 min unless
+--checkpoint-every-min says otherwise, none at 0, a negative refused), kept out of the inputs' hash, and
+a fresh run killed after one goes on from it; a decided run launches through --launch, a kept one does
+not."""
 import json
 import pathlib
 import subprocess
@@ -55,6 +58,7 @@ def main():
         r = result(out)
         check(done.returncode == 0 and r["outcome"] == "perforated" and log(tmp, "calls.txt") == [238]
               and log(tmp, "restarts.txt") == [238, 238], f"{done.returncode} {r} {done.stderr}")
+        check(log(tmp, "clock.txt") == [10, 10, 10], f"each run's clock checkpoints: {log(tmp, 'clock.txt')}")
         done, out = shot(tmp, 238, max_end_time="4e-3")  # run again: kept, nothing launched
         check(done.returncode == 0 and log(tmp, "calls.txt") == [238] and log(tmp, "restarts.txt") == [238, 238]
               and "carried_shot.py:" not in done.stdout, f"rerun launched: {done.stdout}")
@@ -110,6 +114,24 @@ def main():
         (out / "checkpoint.h5").unlink()
         done, out = shot(tmp, 238, max_end_time="4e-3")
         check(done.returncode == 0 and log(tmp, "calls.txt") == [238, 238], f"{log(tmp, 'calls.txt')} {done.stderr}")
+    with tempfile.TemporaryDirectory() as tmp:  # a fresh run killed after its clock's checkpoint: on from it
+        macro, case = stand_in(tmp)
+        sys.path.insert(0, str(SCRIPT.parent))
+        from carried_shot import Shot
+        first = Shot("test", str(macro), "", str(case), None, [], 1e-3, 1e-3)
+        out = pathlib.Path(tmp) / "sweep" / "v300"
+        out.mkdir(parents=True)
+        (out / "config.json").write_text(json.dumps({"hash": first.input_hashes(300, 1e-3)[0]}))
+        (out / "checkpoint.h5").write_text("")
+        done, out = shot(tmp, 300, "--checkpoint-every-min", "2.5")
+        check(done.returncode == 0 and result(out)["outcome"] == "perforated" and log(tmp, "calls.txt") == []
+              and log(tmp, "restarts.txt") == [300], f"{done.returncode} {log(tmp, 'calls.txt')} {done.stderr}")
+        check((pathlib.Path(tmp) / "sweep" / "clock.txt").read_text().split() == ["2.5"], "--checkpoint-every-min 2.5")
+        done, out = shot(tmp, 301, "--checkpoint-every-min", "0")  # 0: no clock asked of uhpc-macro
+        check(done.returncode == 0 and log(tmp, "calls.txt") == [301]
+              and (pathlib.Path(tmp) / "sweep" / "clock.txt").read_text().split() == ["2.5"], f"{done.stderr}")
+        done, out = shot(tmp, 302, "--checkpoint-every-min", "-1")
+        check(done.returncode == 2 and "--checkpoint-every-min" in done.stderr, f"{done.returncode} {done.stderr}")
     with tempfile.TemporaryDirectory() as tmp:  # through a launcher: a missing run launched, a kept one not
         launcher = pathlib.Path(tmp) / "launcher.sh"
         launcher.write_text(f"#!/bin/sh\necho \"$*\" >> {tmp}/launches.txt\nexec \"$@\"\n")

@@ -6,7 +6,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -153,6 +155,74 @@ TEST_F(MacroCheckpoint, AKilledRunRestartedFromItsCheckpointEqualsTheUnstoppedRu
     for (const std::string& field : fa.children(step))
       EXPECT_TRUE(same_bits(fa.read_doubles(step + "/" + field).values, fb.read_doubles(step + "/" + field).values))
           << step << "/" << field;
+}
+
+// The wall clock's checkpoints (--checkpoint-every-min) are not an input: a run that writes one at
+// every step ends with the same bits as a run that writes none (they keep the lazy shape rows). A run
+// killed after one goes on from it with --restart; with every row rebuilt each step
+// (solver.shape_reuse_tolerance 0) it then ends with the same bits as the unstopped run (with lazy rows
+// the resumed run rebuilds its rows where the killed one had kept them: the rows' tolerance apart).
+TEST_F(MacroCheckpoint, WallClockCheckpointsChangeNothingAndAKilledRunGoesOnFromTheLast) {
+  const auto args_for = [&](const std::string& name, std::vector<std::string> overrides, double every_s) {
+    MacroRunArgs a;
+    a.config_path = kCase;
+    a.overrides = std::move(overrides);
+    a.out = dir_ / name;
+    a.quiet = true;
+    a.checkpoint_every_s = every_s;
+    return a;
+  };
+  const auto same_run = [](const fs::path& x, const fs::path& y) {
+    EXPECT_EQ(test::read_file(x / "history.csv"), test::read_file(y / "history.csv")) << x << " " << y;
+    nlohmann::json a = nlohmann::json::parse(test::read_file(x / "result.json"));
+    nlohmann::json b = nlohmann::json::parse(test::read_file(y / "result.json"));
+    for (const char* clock : {"wall_time_s", "particle_steps_per_s", "peak_memory_MB", "provenance"}) {
+      a.erase(clock);
+      b.erase(clock);
+    }
+    EXPECT_EQ(a, b) << x << " " << y;
+  };
+  const std::vector<std::string> lazy = {"run.end_time_s=3e-5"};  // 30 us: the sphere is in the disc
+  const MacroRunArgs plain = args_for("plain", lazy, 0.0);
+  run_macro(plain);
+  const MacroRunArgs clocked = args_for("clocked", lazy, 1e-9);  // a checkpoint after every step
+  run_macro(clocked);
+  same_run(plain.out, clocked.out);
+  // Both configurations record the same inputs: the clock is not one of them.
+  EXPECT_EQ(test::read_file(plain.out / "config.json"), test::read_file(clocked.out / "config.json"));
+
+  const std::vector<std::string> rebuilt = {"run.end_time_s=3e-5", "solver.shape_reuse_tolerance=0"};
+  const MacroRunArgs whole = args_for("whole", rebuilt, 0.0);
+  run_macro(whole);
+  MacroRunArgs split = args_for("split", rebuilt, 0.0);
+  const std::string program = std::string(UHPC_BINARY_DIR) + "/macro/uhpc-macro";
+  const std::string out = split.out.string();
+  const pid_t child = fork();  // fork + exec: OpenMP is not safe across a bare fork
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    execl(program.c_str(), program.c_str(), "-q", "--config", kCase.c_str(), "--set", rebuilt[0].c_str(), "--set",
+          rebuilt[1].c_str(), "--checkpoint-every-min", "1e-7", "--out", out.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Killed once the history saved with the clock's checkpoints holds 20 steps (a row a step after the
+  // header and the initial state; saved just before each checkpoint, which is written atomically): the
+  // checkpoint on disk is then of about the 20th step.
+  const auto rows = [&] {
+    std::ifstream f(split.out / "history.csv");
+    return std::count(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>(), '\n');
+  };
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!(fs::exists(split.out / "checkpoint.h5") && rows() >= 22) && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
+  ASSERT_TRUE(fs::exists(split.out / "checkpoint.h5"));
+  EXPECT_FALSE(fs::exists(split.out / "result.json"));
+  split.restart = true;
+  run_macro(split);
+  same_run(whole.out, split.out);
 }
 
 // An undecided run keeps its last state as a checkpoint; --restart with a later end time carries it on
