@@ -32,6 +32,7 @@ made, with its outcome and residual velocity, the failed runs with their diagnos
 """
 import argparse
 import json
+import math
 import pathlib
 import sys
 
@@ -97,7 +98,7 @@ def main():
     if args.max_end_time is None:
         args.max_end_time = args.end_time
     if not (0 < args.low < args.high <= args.max_velocity) or args.width <= 0 or args.max_failures < 0 \
-            or not 0 < args.end_time <= args.max_end_time or not args.checkpoint_every_min >= 0:
+            or not 0 < args.end_time <= args.max_end_time or not 0 <= args.checkpoint_every_min < math.inf:
         print("ballistic_limit.py: need 0 < --low < --high <= --max-velocity, --width > 0, --max-failures >= 0, "
               "0 < --end-time <= --max-end-time, --checkpoint-every-min >= 0", file=sys.stderr)
         sys.exit(2)

@@ -17,9 +17,10 @@ end time). Each run writes DIR/checkpoint.h5 every --checkpoint-every-min minute
 10; 0: none), which is not an input of the run (uhpc-macro --checkpoint-every-min). A run killed before
 its end time with a checkpoint to go on from (DIR/config.json of these inputs at an end time of the
 ladder, and DIR/checkpoint.h5: one the clock wrote, or the last state it was carried on from) goes on from
-that checkpoint, so at most the minutes since it are lost; uhpc-macro refuses a checkpoint written by
-another build (exit 2). A run resumed so rebuilds its lazy shape rows where the killed one had kept them:
-it differs from an unstopped run within solver.shape_reuse_tolerance. A run that failed numerically before (DIR/diagnostic.json and DIR/config.json of the same
+that checkpoint, so at most the minutes since it are lost. A checkpoint that another build of uhpc-macro
+wrote (uhpc-macro --restart-check says "start") cannot be gone on from: that run, or that carry-on,
+starts again from t = 0. A run resumed from a clock's checkpoint rebuilds its lazy shape rows where the
+killed one had kept them: it differs from an unstopped run within solver.shape_reuse_tolerance. A run that failed numerically before (DIR/diagnostic.json and DIR/config.json of the same
 inputs) is not run again (exit 1; remove DIR to run it again).
 --launch puts a launcher before each run of uhpc-macro, split as a shell would (e.g. "srun -N1 -n1 -c2
 --exclusive"); a kept run launches nothing.
@@ -33,6 +34,7 @@ runs each of its bisection's shots through the same Shot.
 """
 import argparse
 import json
+import math
 import pathlib
 import shlex
 import subprocess
@@ -89,17 +91,34 @@ class Shot:
               file=sys.stderr)
         sys.exit(2)
 
+    def resumable(self, velocity, out, end_time):
+        """uhpc-macro --restart-check: True when the run in `out` can go on from its checkpoint to end_time,
+        False when only a run from t = 0 is left (another build of uhpc-macro wrote the checkpoint, e.g. after
+        a rebuild); stops the study (exit 2) for a checkpoint of other inputs or a corrupt one."""
+        done = subprocess.run(self.command(velocity, end_time) + ["--out", str(out), "--restart-check"],
+                              capture_output=True, text=True)
+        if done.returncode != 0:
+            print(f"{self.prog}: the checkpoint in {out} cannot be gone on from: {done.stderr.strip()}", file=sys.stderr)
+            sys.exit(2)
+        if done.stdout.strip() == "restart":
+            return True
+        print(f"{self.prog}: {out / 'checkpoint.h5'} was written by another build of uhpc-macro: the run starts "
+              f"again from t = 0", flush=True)
+        return False
+
     def interrupted(self, velocity, out):
         """The end time of a run in `out` that was stopped before it (no result.json) but can go on from its
         checkpoint: an undecided run being carried on when it was killed (its config.json, written at its
         start, of these inputs at one end time of the ladder, and a checkpoint.h5, which uhpc-macro writes
-        at an end time, every --checkpoint-every-min minutes, or at run.checkpoint_interval_steps). None
-        otherwise: a run killed before its first checkpoint leaves none and starts again."""
+        at an end time, every --checkpoint-every-min minutes, or at run.checkpoint_interval_steps, of this
+        build). None otherwise: a run killed before its first checkpoint leaves none and starts again, and so
+        does one whose checkpoint another build wrote."""
         config, checkpoint = out / "config.json", out / "checkpoint.h5"
         if not (config.is_file() and checkpoint.is_file()):
             return None
         found = json.loads(config.read_text()).get("hash")
-        return next((t for t in self.end_times() if found in self.input_hashes(velocity, t)), None)
+        end_time = next((t for t in self.end_times() if found in self.input_hashes(velocity, t)), None)
+        return end_time if end_time is not None and self.resumable(velocity, out, end_time) else None
 
     def launch_run(self, velocity, out, end_time, restart):
         """Runs uhpc-macro (a fresh run, or the undecided one in `out` carried on to end_time): None when it
@@ -143,7 +162,7 @@ class Shot:
         # Undecided: carried on, each time to the next end time of the ladder past the one it reached.
         while r.get("outcome") == "undecided" and r["end_time_s"] < self.max_end_time * (1.0 - 1e-9):
             end_time = next(t for t in self.end_times() if t > r["end_time_s"] * (1.0 + 1e-9))
-            failure = self.launch_run(velocity, out, end_time, restart=True)
+            failure = self.launch_run(velocity, out, end_time, restart=self.resumable(velocity, out, end_time))
             if failure is not None:
                 return None, failure
             r = json.loads(result.read_text())
@@ -203,7 +222,7 @@ def main():
         velocity_ok = float(args.velocity) > 0
     except ValueError:
         velocity_ok = False
-    if not (0 < end_time <= max_end_time) or not velocity_ok or not args.checkpoint_every_min >= 0:
+    if not (0 < end_time <= max_end_time) or not velocity_ok or not 0 <= args.checkpoint_every_min < math.inf:
         print(f"{prog}: need 0 < end time ({end_time:g}) <= --max-end-time ({max_end_time:g}), --velocity > 0 "
               f"({args.velocity}) and --checkpoint-every-min >= 0 ({args.checkpoint_every_min:g})",
               file=sys.stderr)

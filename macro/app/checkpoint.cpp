@@ -98,10 +98,20 @@ void write_checkpoint(const std::filesystem::path& file, const RunCheckpoint& c)
   h5.close();
 }
 
+bool written_by_this_build(const std::filesystem::path& file) {
+  try {
+    const H5Reader h5(file, H5Checksums::required);
+    return h5.string_attribute("", "build") == checkpoint_build();
+  } catch (const std::exception&) {
+    return true;  // unreadable: read_checkpoint says what is wrong with it
+  }
+}
+
 RunCheckpoint read_checkpoint(const std::filesystem::path& file, const std::string& config_hash) {
   const std::string name = file.string();
   if (!std::filesystem::exists(file))
-    throw InputError(name + ": no checkpoint to restart from (the run wrote none: run.checkpoint_interval_steps)");
+    throw InputError(name + ": no checkpoint to restart from (the run wrote none: run.checkpoint_interval_steps, "
+                            "--checkpoint-every-min or an undecided end)");
   RunCheckpoint c;
   try {
     const H5Reader h5(file, H5Checksums::required);

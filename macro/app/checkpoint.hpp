@@ -1,8 +1,9 @@
 #pragma once
-// Checkpoints of a uhpc-macro run (run.checkpoint_interval_steps > 0): DIR/checkpoint.h5 holds the
-// solver's state after a step (ExplicitSolver::checkpoint) and the run's own books (the history rows,
-// the outcome and balance trackers, the field steps written), so that `uhpc-macro --restart` goes on
-// from it bit for bit. The file is replaced atomically: a run killed while writing one keeps the one
+// Checkpoints of a uhpc-macro run (run.checkpoint_interval_steps > 0, --checkpoint-every-min, or the last
+// state of an undecided run): DIR/checkpoint.h5 holds the solver's state after a step
+// (ExplicitSolver::checkpoint) and the run's own books (the history rows, the outcome and balance
+// trackers, the field steps written), so that `uhpc-macro --restart` goes on from it (bit for bit when
+// the writing run dropped its lazy shape rows there, as all but the clock's checkpoints do). The file is replaced atomically: a run killed while writing one keeps the one
 // before. A checkpoint is refused (InputError) by a program of another build or for another case: the
 // bytes of the states are this build's, and the state belongs to its case.
 #include <filesystem>
@@ -29,6 +30,8 @@ struct RunCheckpoint {
 std::string checkpoint_build();
 
 void write_checkpoint(const std::filesystem::path& file, const RunCheckpoint& checkpoint);
+// Whether this build wrote `file` (true too when the file cannot be read: read_checkpoint then says why).
+bool written_by_this_build(const std::filesystem::path& file);
 // Throws InputError (naming the file) for a missing, corrupt or foreign checkpoint, and when its case
 // hash differs from `config_hash`. The file's checksums (hdf5_io.hpp) are verified: a checkpoint without
 // them, or one whose metadata or values fail them, is refused.

@@ -1,6 +1,6 @@
 // uhpc-macro: one 3D penetration run (docs/architecture.md section 2).
 //
-//   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q] [--restart | --reuse | --reuse-check]
+//   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --out DIR [-q] [--restart | --reuse | --reuse-check | --restart-check]
 //              [--checkpoint-every-min M]
 //   uhpc-macro --config CASE.json [--sdel sdel.json] [--set key.path=value]... --inputs-hash
 //
@@ -51,6 +51,13 @@ int main(int argc, char** argv) {
                "print \"kept\" when OUT holds a finished run of these inputs, \"run\" when it holds none, exit 2 "
                "when it holds one of other inputs; writes nothing");
   reuse_check->excludes(app.get_option("--restart"));
+  auto* restart_check = app.add_flag("--restart-check", args.restart_check,
+               "print \"restart\" when OUT/checkpoint.h5 can be gone on from with these inputs (this build's, "
+               "before the end time), \"start\" when there is none or another build wrote it; exit 2 for one of "
+               "other inputs, a corrupt one or one at or past the end time; writes nothing");
+  restart_check->excludes(app.get_option("--restart"));
+  restart_check->excludes(reuse);
+  restart_check->excludes(reuse_check);
   uhpc::add_set_option(app, args.overrides);
   return uhpc::run_main(app, [&] {
     app.parse(argc, argv);

@@ -215,8 +215,14 @@ void run_macro(const MacroRunArgs& args) {
     std::cout << (reuse_finished_run(args.out / "result.json", inputs) ? "kept" : "run") << std::endl;
     return;
   }
-  if (args.reuse && reuse_finished_run(args.out / "result.json", inputs)) return;
   const fs::path checkpoint_file = args.out / "checkpoint.h5";
+  if (args.restart_check) {
+    const bool resumable = fs::exists(checkpoint_file) && written_by_this_build(checkpoint_file);
+    if (resumable) check_checkpoint_values(read_checkpoint(checkpoint_file, inputs.restart_hash), settings.run, checkpoint_file);
+    std::cout << (resumable ? "restart" : "start") << std::endl;
+    return;
+  }
+  if (args.reuse && reuse_finished_run(args.out / "result.json", inputs)) return;
   std::optional<RunCheckpoint> resumed;
   if (args.restart) {
     resumed = read_checkpoint(checkpoint_file, inputs.restart_hash);
@@ -332,10 +338,13 @@ void run_macro(const MacroRunArgs& args) {
                    solver.steps(), solver.time() * 1e6, solver.steps() / elapsed(), solver.sphere().x[2] * 1e3,
                    solver.sphere().v[2], solver.contact().particles_in_contact);
     }
-    if (settings.run.checkpoint_interval_steps > 0 && solver.steps() % settings.run.checkpoint_interval_steps == 0) {
+    // None on the last step: the run ends there, and removes its checkpoint or writes its own.
+    const bool last_step = finished();
+    if (!last_step && settings.run.checkpoint_interval_steps > 0 &&
+        solver.steps() % settings.run.checkpoint_interval_steps == 0) {
       write_checkpoint_now(ShapeRows::Drop);
       last_checkpoint_s = elapsed();
-    } else if (args.checkpoint_every_s > 0.0 && elapsed() - last_checkpoint_s >= args.checkpoint_every_s) {
+    } else if (!last_step && args.checkpoint_every_s > 0.0 && elapsed() - last_checkpoint_s >= args.checkpoint_every_s) {
       write_checkpoint_now(ShapeRows::Keep);
       last_checkpoint_s = elapsed();
     }

@@ -34,6 +34,11 @@ struct MacroRunArgs {
   // none: a run is needed), refuses (InputError) one of other inputs, and writes nothing. A launcher
   // (pipelines/launch_shot.sh) asks this before it spends a job step on a shot.
   bool reuse_check = false;
+  // Only say whether out/checkpoint.h5 can be gone on from with these inputs: prints "restart" (it is this
+  // build's, of these inputs, before the end time) or "start" (there is none, or another build wrote it:
+  // only a run from t = 0 is left), refuses (InputError) one of other inputs, a corrupt one or one at or
+  // past the end time, and writes nothing. pipelines/carried_shot.py asks it before it resumes a run.
+  bool restart_check = false;
 };
 
 void run_macro(const MacroRunArgs& args);

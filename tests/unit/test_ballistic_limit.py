@@ -23,13 +23,18 @@ SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "pipelines" / "ballistic_
 STAND_IN = """#!{python}
 import hashlib, json, pathlib, sys
 a = sys.argv[1:]
-inputs = [s for i, s in enumerate(a) if s not in ("-q", "--out", "--inputs-hash", "--restart", "--checkpoint-every-min")
+inputs = [s for i, s in enumerate(a) if s not in ("-q", "--out", "--inputs-hash", "--restart", "--restart-check",
+                                                  "--checkpoint-every-min")
           and (i == 0 or a[i - 1] not in ("--out", "--checkpoint-every-min"))]
 h = hashlib.sha1(" ".join(inputs).encode()).hexdigest()[:16]
 if "--inputs-hash" in a:
     print(h)
     sys.exit(0)
 out = pathlib.Path(a[a.index("--out") + 1])
+if "--restart-check" in a:  # a checkpoint reading "other build" is another build's
+    c = out / "checkpoint.h5"
+    print("restart" if c.exists() and c.read_text() != "other build" else "start")
+    sys.exit(0)
 v = [int(float(s.split("=")[1])) for s in a if s.startswith("projectile.velocity_m_s=")][0]
 end = [float(s.split("=")[1]) for s in a if s.startswith("run.end_time_s=")][0]
 restart = "--restart" in a
@@ -92,6 +97,8 @@ def main():
         check(s["bracket_width_m_s"] <= 10 and s["width_reached"], f"width {s['bracket_width_m_s']}")
         check(len(calls) == len(set(calls)), f"a velocity was run twice: {calls}")
         check(len(s["runs"]) == len(calls), "every run listed once")
+        clock = (out / "clock.txt").read_text().split()
+        check(clock == ["10"] * len(calls), f"each run's clock checkpoints (every 10 min): {clock}")
         # a resume with another end time finds runs made from other inputs: stops, runs nothing
         done, out, again = bisect(tmp, 200, 300, end_time="2e-3")
         check(done.returncode == 2 and "other inputs" in done.stderr and again == calls, done.stderr)

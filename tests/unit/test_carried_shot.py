@@ -7,9 +7,10 @@ run.end_time_s (not overridden by the ladder) or from the case; given twice and 
 2); a run made from other inputs refused (exit 2), untouched; a numerical failure exits 1 and is not
 rerun; a killed run exits 3; a run killed while carried on goes on from its checkpoint on resume, one
 without a checkpoint starts over; every run asks uhpc-macro for its clock's checkpoints (10 min unless
---checkpoint-every-min says otherwise, none at 0, a negative refused), kept out of the inputs' hash, and
-a fresh run killed after one goes on from it; a decided run launches through --launch, a kept one does
-not."""
+--checkpoint-every-min says otherwise, none at 0, a negative or infinite one refused), kept out of the
+inputs' hash, and a fresh run killed after one goes on from it; a checkpoint another build wrote is not
+gone on from (uhpc-macro --restart-check): the run or its carry-on starts over; a decided run launches
+through --launch, a kept one does not."""
 import json
 import pathlib
 import subprocess
@@ -109,11 +110,19 @@ def main():
         check(done.returncode == 0 and result(out)["outcome"] == "perforated" and log(tmp, "calls.txt") == [238]
               and log(tmp, "restarts.txt") == [238, 238], f"{done.returncode} {log(tmp, 'calls.txt')} "
               f"{log(tmp, 'restarts.txt')} {done.stderr}")
-        # Without its checkpoint (a fresh run killed: uhpc-macro writes none before its end time) it starts over.
+        # A checkpoint another build wrote (after a rebuild) cannot be gone on from: the run starts over from
+        # t = 0 and is carried along the ladder again (1 -> 2 -> 4 ms).
+        (out / "result.json").unlink()
+        (out / "checkpoint.h5").write_text("other build")
+        done, out = shot(tmp, 238, max_end_time="4e-3")
+        check(done.returncode == 0 and result(out)["outcome"] == "perforated" and log(tmp, "calls.txt") == [238, 238]
+              and log(tmp, "restarts.txt") == [238] * 4 and "another build" in done.stdout,
+              f"{done.returncode} {log(tmp, 'calls.txt')} {log(tmp, 'restarts.txt')} {done.stdout} {done.stderr}")
+        # Without its checkpoint (killed before its first one) it starts over.
         (out / "result.json").unlink()
         (out / "checkpoint.h5").unlink()
         done, out = shot(tmp, 238, max_end_time="4e-3")
-        check(done.returncode == 0 and log(tmp, "calls.txt") == [238, 238], f"{log(tmp, 'calls.txt')} {done.stderr}")
+        check(done.returncode == 0 and log(tmp, "calls.txt") == [238, 238, 238], f"{log(tmp, 'calls.txt')} {done.stderr}")
     with tempfile.TemporaryDirectory() as tmp:  # a fresh run killed after its clock's checkpoint: on from it
         macro, case = stand_in(tmp)
         sys.path.insert(0, str(SCRIPT.parent))
@@ -130,8 +139,18 @@ def main():
         done, out = shot(tmp, 301, "--checkpoint-every-min", "0")  # 0: no clock asked of uhpc-macro
         check(done.returncode == 0 and log(tmp, "calls.txt") == [301]
               and (pathlib.Path(tmp) / "sweep" / "clock.txt").read_text().split() == ["2.5"], f"{done.stderr}")
-        done, out = shot(tmp, 302, "--checkpoint-every-min", "-1")
-        check(done.returncode == 2 and "--checkpoint-every-min" in done.stderr, f"{done.returncode} {done.stderr}")
+        for bad in ("-1", "inf"):
+            done, out = shot(tmp, 302, "--checkpoint-every-min", bad)
+            check(done.returncode == 2 and "--checkpoint-every-min" in done.stderr, f"{bad}: {done.returncode} {done.stderr}")
+        # An undecided run's checkpoint written by another build: its carry-on starts over at the next end time.
+        (pathlib.Path(tmp) / "sweep" / "calls.txt").unlink()
+        done, out = shot(tmp, 232, max_end_time="2e-3")  # undecided at 1 ms, carried on to 2 ms: undecided
+        check(done.returncode == 0 and result(out)["outcome"] == "undecided" and log(tmp, "calls.txt") == [232],
+              f"{done.returncode} {done.stderr}")
+        (out / "checkpoint.h5").write_text("other build")
+        done, out = shot(tmp, 232, max_end_time="4e-3")
+        check(done.returncode == 0 and result(out)["outcome"] == "embedded" and log(tmp, "calls.txt") == [232, 232],
+              f"{done.returncode} {log(tmp, 'calls.txt')} {done.stdout} {done.stderr}")
     with tempfile.TemporaryDirectory() as tmp:  # through a launcher: a missing run launched, a kept one not
         launcher = pathlib.Path(tmp) / "launcher.sh"
         launcher.write_text(f"#!/bin/sh\necho \"$*\" >> {tmp}/launches.txt\nexec \"$@\"\n")

@@ -220,6 +220,11 @@ TEST_F(MacroCheckpoint, WallClockCheckpointsChangeNothingAndAKilledRunGoesOnFrom
   ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
   ASSERT_TRUE(fs::exists(split.out / "checkpoint.h5"));
   EXPECT_FALSE(fs::exists(split.out / "result.json"));
+  split.restart_check = true;  // what pipelines/carried_shot.py asks first
+  testing::internal::CaptureStdout();
+  run_macro(split);
+  EXPECT_EQ(testing::internal::GetCapturedStdout(), "restart\n");
+  split.restart_check = false;
   split.restart = true;
   run_macro(split);
   same_run(whole.out, split.out);
@@ -289,19 +294,34 @@ TEST_F(MacroCheckpoint, ADecidedRunRemovesItsCheckpoint) {
   EXPECT_FALSE(fs::exists(a.out / "checkpoint.h5"));
 }
 
-// A checkpoint of another case or another build is refused with one line naming the file.
+// A checkpoint of another case or another build is refused with one line naming the file. --restart-check
+// answers "start" where only a run from t = 0 is left (no checkpoint, another build's) and refuses the rest
+// as --restart does.
 TEST_F(MacroCheckpoint, ACheckpointOfAnotherCaseOrBuildOrNoneIsRefused) {
-  const auto restart_error = [&](const std::vector<std::string>& overrides) {
+  const auto args_for = [&](bool check) {
     MacroRunArgs args;
     args.config_path = kCase;
-    args.overrides = overrides;
     args.out = dir_;
     args.quiet = true;
-    args.restart = true;
+    args.restart = !check;
+    args.restart_check = check;
+    return args;
+  };
+  const auto restart_error = [&](const std::vector<std::string>& overrides) {
+    MacroRunArgs args = args_for(false);
+    args.overrides = overrides;
     return test::error_of<InputError>([&] { run_macro(args); });
   };
+  const auto check_answer = [&] {
+    testing::internal::CaptureStdout();
+    run_macro(args_for(true));
+    return testing::internal::GetCapturedStdout();
+  };
+  const auto check_error = [&] { return test::error_of<InputError>([&] { run_macro(args_for(true)); }); };
   const std::string file = (dir_ / "checkpoint.h5").string();
-  EXPECT_EQ(restart_error({}), file + ": no checkpoint to restart from (the run wrote none: run.checkpoint_interval_steps)");
+  EXPECT_EQ(restart_error({}), file + ": no checkpoint to restart from (the run wrote none: "
+                                   "run.checkpoint_interval_steps, --checkpoint-every-min or an undecided end)");
+  EXPECT_EQ(check_answer(), "start\n");
 
   RunCheckpoint c;
   c.solver = coarse_disc_solver().checkpoint();
@@ -311,12 +331,16 @@ TEST_F(MacroCheckpoint, ACheckpointOfAnotherCaseOrBuildOrNoneIsRefused) {
   const std::string other_case = restart_error({});
   EXPECT_EQ(other_case.rfind(file + ": written for a case whose hash is 0123456789abcdef, this case's is ", 0), 0u)
       << other_case;
+  EXPECT_EQ(check_error(), other_case);
   c.build = "0.0.1 abc";
   write_checkpoint(file, c);
   EXPECT_EQ(restart_error({}), file + ": written by uhpc-macro 0.0.1 abc, this is " + checkpoint_build() +
                                    ": a checkpoint is resumed by the build that wrote it");
+  EXPECT_EQ(check_answer(), "start\n");
   write_text_atomic(file, "not hdf5");
   EXPECT_EQ(restart_error({}).rfind(file + ": not a usable checkpoint: ", 0), 0u);
+  EXPECT_EQ(check_error().rfind(file + ": not a usable checkpoint: ", 0), 0u);
+  EXPECT_TRUE(fs::exists(file));  // the check writes and removes nothing
 }
 
 // A checkpoint's values are checked against the restarted run's own bounds (the edits the issue made:
