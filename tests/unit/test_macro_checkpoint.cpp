@@ -58,6 +58,29 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
+// Runs uhpc-macro with `args` in a process of its own (fork + exec: OpenMP is not safe across a bare
+// fork; its stdout and stderr go to the test's) and kills it once `ready()` holds, polled (at most 60 s).
+// Returns whether the kill ended it, rather than the run finishing first.
+bool killed_when(const std::vector<std::string>& args, const std::function<bool()>& ready) {
+  const std::string program = std::string(UHPC_BINARY_DIR) + "/macro/uhpc-macro";
+  std::vector<char*> argv{const_cast<char*>(program.c_str())};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const pid_t child = fork();
+  if (child < 0) return false;
+  if (child == 0) {
+    execv(program.c_str(), argv.data());
+    _exit(127);
+  }
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!ready() && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  return WIFSIGNALED(status);
+}
+
 // Solver A steps 60 times, drops its shape cache and is checkpointed (through the file), then steps
 // 60 more; solver B is built from the same case, resumed from the file and steps the same 60: every
 // evolving field, the material states, the sphere and the ledger are the same bits.
@@ -116,25 +139,11 @@ TEST_F(MacroCheckpoint, AKilledRunRestartedFromItsCheckpointEqualsTheUnstoppedRu
 
   MacroRunArgs split = whole;
   split.out = dir_ / "split";
-  // The program in a process of its own (fork + exec: OpenMP is not safe across a bare fork).
-  const std::string program = std::string(UHPC_BINARY_DIR) + "/macro/uhpc-macro";
-  const std::string out = split.out.string();
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    execl(program.c_str(), program.c_str(), "-q", "--config", kCase.c_str(), "--set", overrides[0].c_str(), "--set",
-          overrides[1].c_str(), "--out",
-          out.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  // Kill it as soon as the first checkpoint is on disk (written atomically: complete when it appears).
-  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(split.out / "checkpoint.h5") && std::chrono::steady_clock::now() < give_up)
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
-  kill(child, SIGKILL);
-  int status = 0;
-  waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
+  // Killed as soon as the first checkpoint is on disk (written atomically: complete when it appears).
+  ASSERT_TRUE(killed_when({"-q", "--config", kCase, "--set", overrides[0], "--set", overrides[1], "--out",
+                           split.out.string()},
+                          [&] { return fs::exists(split.out / "checkpoint.h5"); }))
+      << "the run finished before it could be killed";
   ASSERT_TRUE(fs::exists(split.out / "checkpoint.h5"));
   EXPECT_FALSE(fs::exists(split.out / "result.json"));
 
@@ -195,15 +204,6 @@ TEST_F(MacroCheckpoint, WallClockCheckpointsChangeNothingAndAKilledRunGoesOnFrom
   const MacroRunArgs whole = args_for("whole", rebuilt, 0.0);
   run_macro(whole);
   MacroRunArgs split = args_for("split", rebuilt, 0.0);
-  const std::string program = std::string(UHPC_BINARY_DIR) + "/macro/uhpc-macro";
-  const std::string out = split.out.string();
-  const pid_t child = fork();  // fork + exec: OpenMP is not safe across a bare fork
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    execl(program.c_str(), program.c_str(), "-q", "--config", kCase.c_str(), "--set", rebuilt[0].c_str(), "--set",
-          rebuilt[1].c_str(), "--checkpoint-every-min", "1e-7", "--out", out.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
   // Killed once the history saved with the clock's checkpoints holds 20 steps (a row a step after the
   // header and the initial state; saved just before each checkpoint, which is written atomically): the
   // checkpoint on disk is then of about the 20th step.
@@ -211,13 +211,10 @@ TEST_F(MacroCheckpoint, WallClockCheckpointsChangeNothingAndAKilledRunGoesOnFrom
     std::ifstream f(split.out / "history.csv");
     return std::count(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>(), '\n');
   };
-  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!(fs::exists(split.out / "checkpoint.h5") && rows() >= 22) && std::chrono::steady_clock::now() < give_up)
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
-  kill(child, SIGKILL);
-  int status = 0;
-  waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed";
+  ASSERT_TRUE(killed_when({"-q", "--config", kCase, "--set", rebuilt[0], "--set", rebuilt[1], "--checkpoint-every-min",
+                           "1e-7", "--out", split.out.string()},
+                          [&] { return fs::exists(split.out / "checkpoint.h5") && rows() >= 22; }))
+      << "the run finished before it could be killed";
   ASSERT_TRUE(fs::exists(split.out / "checkpoint.h5"));
   EXPECT_FALSE(fs::exists(split.out / "result.json"));
   split.restart_check = true;  // what pipelines/carried_shot.py asks first
