@@ -18,10 +18,11 @@ end time). Each run writes DIR/checkpoint.h5 every --checkpoint-every-min minute
 its end time with a checkpoint to go on from (DIR/config.json of these inputs at an end time of the
 ladder, and DIR/checkpoint.h5: one the clock wrote, or the last state it was carried on from) goes on from
 that checkpoint, so at most the minutes since it are lost. A checkpoint that another build of uhpc-macro
-wrote (uhpc-macro --restart-check says "start") cannot be gone on from: that run, or that carry-on,
-starts again from t = 0. A run resumed from a clock's checkpoint rebuilds its lazy shape rows where the
-killed one had kept them: it differs from an unstopped run within solver.shape_reuse_tolerance. A run that failed numerically before (DIR/diagnostic.json and DIR/config.json of the same
-inputs) is not run again (exit 1; remove DIR to run it again).
+wrote, or a missing one (uhpc-macro --restart-check says "start"), cannot be gone on from: that run, or
+that carry-on, starts again from t = 0. A run resumed from a clock's checkpoint rebuilds its lazy shape
+rows where the killed one had kept them: it differs from an unstopped run within
+solver.shape_reuse_tolerance. A run that failed numerically before (DIR/diagnostic.json and
+DIR/config.json of the same inputs) is not run again (exit 1; remove DIR to run it again).
 --launch puts a launcher before each run of uhpc-macro, split as a shell would (e.g. "srun -N1 -n1 -c2
 --exclusive"); a kept run launches nothing.
 Exit codes: 0 the run is in DIR (decided, or undecided at --max-end-time: its result.json says which);
@@ -102,8 +103,8 @@ class Shot:
             sys.exit(2)
         if done.stdout.strip() == "restart":
             return True
-        print(f"{self.prog}: {out / 'checkpoint.h5'} was written by another build of uhpc-macro: the run starts "
-              f"again from t = 0", flush=True)
+        why = "was written by another build of uhpc-macro" if (out / "checkpoint.h5").exists() else "is missing"
+        print(f"{self.prog}: {out / 'checkpoint.h5'} {why}: the run starts again from t = 0", flush=True)
         return False
 
     def interrupted(self, velocity, out):
