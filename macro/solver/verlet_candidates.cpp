@@ -49,10 +49,6 @@ void VerletCandidates::outer_search(const double* x, const double* support, doub
   outer_radius_.resize(n);
   for (std::size_t i = 0; i < n; ++i) outer_radius_[i] = support[i] + 2.0 * s;
   nodes_covering<3>(x, n, x, outer_radius_.data(), n, outer_, workspace);
-  // The search's per-thread blocks now hold a second copy of the outer lists; the partial searches until
-  // the next outer one use them only for the few fast particles, so their memory goes back (an outer
-  // search is rare: allocating its blocks again then costs little against the search itself).
-  for (auto& block : workspace.blocks) std::vector<std::int32_t>().swap(block);
   if (outer_.indices.capacity() < outer_.indices.size() + outer_.indices.size() / 10)
     outer_.indices.reserve(outer_.indices.size() + outer_.indices.size() / 4);
   outer_x_.assign(x, x + 3 * n);
