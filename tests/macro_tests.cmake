@@ -36,7 +36,7 @@ uhpc_add_test(unit unit/test_macro_lazy_rows.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_verlet_candidates.cpp uhpc_macro_solver)
 # uhpc-compare-shots (issue 7): the comparison with Tables 5 and 8 and the spread of one shot.
 uhpc_add_test(unit unit/test_macro_shot_comparison.cpp uhpc_macro_shots)
-uhpc_add_test(unit unit/test_macro_checkpoint.cpp uhpc_macro_app)
+uhpc_add_test(unit unit/test_macro_checkpoint.cpp uhpc_macro_app uhpc_hdf5)  # (hdf5: a file without checksums)
 uhpc_add_test(unit unit/test_macro_run_warnings.cpp uhpc_macro_app)
 uhpc_add_test(unit unit/test_macro_panel_damage.cpp uhpc_macro_app)
 uhpc_add_test(unit unit/test_macro_impact_outcome.cpp uhpc_macro_app)

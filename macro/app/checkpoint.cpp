@@ -103,6 +103,11 @@ bool written_by_this_build(const std::filesystem::path& file) {
     const H5Reader h5(file, H5Checksums::required);
     return h5.string_attribute("", "build") == checkpoint_build();
   } catch (const std::exception&) {
+  }
+  try {  // an HDF5 file without checksums: written before every build wrote them, so by another one
+    const H5Reader h5(file, H5Checksums::optional);
+    return h5.checksummed();
+  } catch (const std::exception&) {
     return true;  // unreadable: read_checkpoint says what is wrong with it
   }
 }

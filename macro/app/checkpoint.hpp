@@ -30,7 +30,9 @@ struct RunCheckpoint {
 std::string checkpoint_build();
 
 void write_checkpoint(const std::filesystem::path& file, const RunCheckpoint& checkpoint);
-// Whether this build wrote `file` (true too when the file cannot be read: read_checkpoint then says why).
+// Whether this build wrote `file`: false for another build's, and for an HDF5 file without checksums
+// (every build since they were added writes them); true too when the file cannot be read or fails its
+// checksums (read_checkpoint then says why).
 bool written_by_this_build(const std::filesystem::path& file);
 // Throws InputError (naming the file) for a missing, corrupt or foreign checkpoint, and when its case
 // hash differs from `config_hash`. The file's checksums (hdf5_io.hpp) are verified: a checkpoint without

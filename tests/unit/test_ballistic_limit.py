@@ -18,8 +18,11 @@ SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "pipelines" / "ballistic_
 # config.json (the inputs' hash) and a result.json: perforated at and above LIMIT, embedded below; at a
 # velocity of FAIL_AT, config.json and diagnostic.json and exit 1. At a velocity of UNDECIDED the sphere is
 # decided only at DECIDE_TIME: a run ending earlier is undecided and keeps a checkpoint.h5, which --restart
-# (exit 2 without one) carries on. --inputs-hash prints the hash of its arguments but --out, -q and
-# --restart, as uhpc-macro prints the hash of its inputs (the end time among them).
+# (exit 2 without one) carries on. --inputs-hash prints the hash of its arguments but --out, -q,
+# --restart, --restart-check and --checkpoint-every-min, as uhpc-macro prints the hash of its inputs (the
+# end time among them). --restart-check prints "restart" for a checkpoint.h5, "start" for none or one
+# reading "other build", and exits 2 for one reading "corrupt"; --checkpoint-every-min is logged in
+# clock.txt beside the runs.
 STAND_IN = """#!{python}
 import hashlib, json, pathlib, sys
 a = sys.argv[1:]
@@ -31,8 +34,10 @@ if "--inputs-hash" in a:
     print(h)
     sys.exit(0)
 out = pathlib.Path(a[a.index("--out") + 1])
-if "--restart-check" in a:  # a checkpoint reading "other build" is another build's
+if "--restart-check" in a:  # a checkpoint reading "other build" is another build's, "corrupt" is refused
     c = out / "checkpoint.h5"
+    if c.exists() and c.read_text() == "corrupt":
+        sys.exit(2)
     print("restart" if c.exists() and c.read_text() != "other build" else "start")
     sys.exit(0)
 v = [int(float(s.split("=")[1])) for s in a if s.startswith("projectile.velocity_m_s=")][0]

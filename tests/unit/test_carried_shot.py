@@ -118,8 +118,13 @@ def main():
         check(done.returncode == 0 and result(out)["outcome"] == "perforated" and log(tmp, "calls.txt") == [238, 238]
               and log(tmp, "restarts.txt") == [238] * 4 and "another build" in done.stdout,
               f"{done.returncode} {log(tmp, 'calls.txt')} {log(tmp, 'restarts.txt')} {done.stdout} {done.stderr}")
-        # Without its checkpoint (killed before its first one) it starts over.
+        # A corrupt checkpoint (uhpc-macro --restart-check exits 2) stops the shot, launching nothing.
         (out / "result.json").unlink()
+        (out / "checkpoint.h5").write_text("corrupt")
+        done, out = shot(tmp, 238, max_end_time="4e-3")
+        check(done.returncode == 2 and "cannot be gone on from" in done.stderr and log(tmp, "calls.txt") == [238, 238]
+              and log(tmp, "restarts.txt") == [238] * 4, f"{done.returncode} {done.stderr}")
+        # Without its checkpoint (killed before its first one) it starts over.
         (out / "checkpoint.h5").unlink()
         done, out = shot(tmp, 238, max_end_time="4e-3")
         check(done.returncode == 0 and log(tmp, "calls.txt") == [238, 238, 238], f"{log(tmp, 'calls.txt')} {done.stderr}")
@@ -149,8 +154,17 @@ def main():
               f"{done.returncode} {done.stderr}")
         (out / "checkpoint.h5").write_text("other build")
         done, out = shot(tmp, 232, max_end_time="4e-3")
-        check(done.returncode == 0 and result(out)["outcome"] == "embedded" and log(tmp, "calls.txt") == [232, 232],
-              f"{done.returncode} {log(tmp, 'calls.txt')} {done.stdout} {done.stderr}")
+        check(done.returncode == 0 and result(out)["outcome"] == "embedded" and log(tmp, "calls.txt") == [232, 232]
+              and "another build" in done.stdout, f"{done.returncode} {log(tmp, 'calls.txt')} {done.stdout} {done.stderr}")
+        # The same with its checkpoint missing: said so, and started over.
+        done, out = shot(tmp, 232, max_end_time="2e-3")  # a 2 ms ladder: the 4 ms run is another's
+        check(done.returncode == 2, f"{done.returncode} {done.stderr}")
+        (pathlib.Path(tmp) / "sweep" / "v232").rename(pathlib.Path(tmp) / "sweep" / "v232_done")
+        done, out = shot(tmp, 232, max_end_time="2e-3")  # undecided at 2 ms, its checkpoint kept
+        (out / "checkpoint.h5").unlink()
+        done, out = shot(tmp, 232, max_end_time="4e-3")
+        check(done.returncode == 0 and result(out)["outcome"] == "embedded" and "is missing" in done.stdout,
+              f"{done.returncode} {done.stdout} {done.stderr}")
     with tempfile.TemporaryDirectory() as tmp:  # through a launcher: a missing run launched, a kept one not
         launcher = pathlib.Path(tmp) / "launcher.sh"
         launcher.write_text(f"#!/bin/sh\necho \"$*\" >> {tmp}/launches.txt\nexec \"$@\"\n")

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include <gmock/gmock.h>
+#include <hdf5.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -269,6 +270,10 @@ TEST_F(MacroCheckpoint, AnUndecidedRunIsExtendedByARestartWithALaterEndTime) {
   const std::string reached = test::error_of<InputError>([&] { run_macro(extended); });
   EXPECT_NE(reached.find((extended.out / "checkpoint.h5").string() + ": solver/clock time_s = "), std::string::npos) << reached;
   EXPECT_NE(reached.find("at or past run.end_time_s = 5e-05 s"), std::string::npos) << reached;
+  MacroRunArgs check = extended;  // --restart-check refuses it alike
+  check.restart = false;
+  check.restart_check = true;
+  EXPECT_EQ(test::error_of<InputError>([&] { run_macro(check); }), reached);
   EXPECT_EQ(test::read_file(extended.out / "result.json"), result_before);
   // Anything else changed is another case.
   extended.overrides.back() = "run.end_time_s=9e-5";
@@ -333,6 +338,10 @@ TEST_F(MacroCheckpoint, ACheckpointOfAnotherCaseOrBuildOrNoneIsRefused) {
   write_checkpoint(file, c);
   EXPECT_EQ(restart_error({}), file + ": written by uhpc-macro 0.0.1 abc, this is " + checkpoint_build() +
                                    ": a checkpoint is resumed by the build that wrote it");
+  EXPECT_EQ(check_answer(), "start\n");
+  const hid_t old = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);  // no checksums: an
+  ASSERT_GE(old, 0);                                                                   // earlier build's
+  H5Fclose(old);
   EXPECT_EQ(check_answer(), "start\n");
   write_text_atomic(file, "not hdf5");
   EXPECT_EQ(restart_error({}).rfind(file + ": not a usable checkpoint: ", 0), 0u);
