@@ -25,6 +25,7 @@ uhpc_add_test(verification verification/test_macro_spall.cpp uhpc_macro_solver)
 # Sphere contact, step-collapse guard, robustness exits and the uhpc-macro program.
 uhpc_add_test(verification verification/test_macro_sphere_contact.cpp uhpc_macro_solver)
 uhpc_add_test(verification verification/test_macro_contact_convergence.cpp uhpc_macro_solver)
+uhpc_add_test(verification verification/test_macro_contact_swept_mass.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_robustness.cpp uhpc_macro_solver)
 uhpc_add_test(unit unit/test_macro_app.cpp uhpc_macro_app)
 add_dependencies(unit_test_macro_app uhpc-macro)  # the exit-code test runs the program

@@ -53,6 +53,12 @@ ProjectileSettings read_projectile(const Config& p) {
   if (s.contact.model == SphereContactModel::Penalty && s.contact.contact_radius_factor == 0.0)
     c.fail("contact_radius_factor", "value 0 needs model 'kinematic' (the penalty acts over the contact radius)");
   s.contact.friction_coefficient = c.number("friction_coefficient", Range::closed(0.0, 2.0));
+  // [choice] optional, "offset" when absent (the contact every case was run with before the option).
+  if (c.has("surface"))
+    s.contact.surface = c.choice("surface", {"offset", "leading"}) == "leading" ? ContactSurface::Leading
+                                                                               : ContactSurface::Offset;
+  if (s.contact.model == SphereContactModel::Penalty && s.contact.surface == ContactSurface::Leading)
+    c.fail("surface", "value 'leading' needs model 'kinematic' (the penalty's force is the gradient of its offset overlap)");
   return s;
 }
 

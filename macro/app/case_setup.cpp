@@ -84,6 +84,7 @@ RigidSphere make_projectile(const ProjectileSettings& s) {
   sphere.x = {s.offset_m - travel * d[0], 0.0, -s.radius_m - travel * d[2]};
   sphere.v = {s.velocity_m_s * d[0], s.velocity_m_s * d[1], s.velocity_m_s * d[2]};
   sphere.contact = s.contact;
+  sphere.contact.leading_direction = d;  // the leading surface's front: the flight direction at impact
   return sphere;
 }
 

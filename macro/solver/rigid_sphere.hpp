@@ -43,10 +43,23 @@
 // torque on the sphere is not applied: zero by symmetry for a normal impact on the axis.
 // Both models also limit the step so that the sphere cannot pass through a particle's contact radius
 // between two steps: the time it takes to travel the smallest contact radius, min r_I / |v_s| (h_I / 4 for r_I = 0).
-// The contact distance R + r_I sweeps, per unit of the sphere's travel, the particles whose centres lie
-// within R + r_I of its line: a mass rho0 pi (R + r_I)^2, which converges to the sphere's own
+// The contact surface (ContactSurface). With the offset surface (default) a particle touches at
+// d_I = R + r_I all around: the sphere sweeps, per unit of its travel, the particles whose centres lie
+// within R + r_I of its line, a mass rho0 pi (R + r_I)^2, which converges to the sphere's own
 // rho0 pi R^2 as h -> 0 for any factor, and equals it at every spacing for factor 0 (the particles'
-// centres meet the sphere's surface; kinematic model only).
+// centres meet the sphere's surface; kinematic model only), whose front then enters each particle's
+// volume by h_I / 2 before it touches. The leading surface (kinematic model only) has both: the union
+// of the sphere and the sphere advanced by r_I along the flight direction e at impact
+// (SphereContactOptions::leading_direction), so the body's surface meets the sphere's front (the reach
+// there is R + r_I) while the union's section across the flight line, and so the swept mass, is the
+// sphere's own at every spacing. Along the ray from the centre at angle theta to e the reach is
+//     max(R, r_I cos theta + sqrt(R^2 - r_I^2 sin^2 theta))   for cos theta > 0 (R where the root is
+// imaginary), R behind the equator. e is the flight direction at impact and not the current velocity:
+// the face that struck keeps its reach when the sphere stops or rebounds (with the velocity the reach
+// of the struck face would drop by r_I at the turn, and the target's surface would strike it again:
+// tried, the elastic block's rebound then lost most of its energy). The forces stay central, so
+// momentum is conserved and the sphere takes no torque as before; a radial correction changes a gap by
+// itself (the reach depends on the direction only), so the active-set solve below is unchanged.
 #include <cstdint>
 #include <vector>
 
@@ -57,16 +70,27 @@ namespace uhpc::macro {
 
 enum class SphereContactModel : std::uint8_t { Kinematic, Penalty };
 
+// [choice] Where a particle touches the sphere (header). Offset (default): at R + r_I in every direction.
+// Leading (kinematic model only): the sphere and the sphere advanced by r_I along the flight direction.
+enum class ContactSurface : std::uint8_t { Offset, Leading };
+
 struct SphereContactOptions {
   SphereContactModel model = SphereContactModel::Kinematic;
   double penalty_scale = 1.0;          // Penalty: k_I = penalty_scale * rho0 c0^2 h_I
   double contact_radius_factor = 0.5;  // r_I = contact_radius_factor * h_I (>= 0; > 0 for the penalty)
   double friction_coefficient = 0.0;   // Coulomb mu (0: frictionless)
+  ContactSurface surface = ContactSurface::Offset;
+  Vec3 leading_direction{0.0, 0.0, 1.0};  // Leading: the unit flight direction at impact
 };
 
 // The distance that sets the travel limit and the candidates' margin for a particle of spacing h: its
 // contact radius factor x h, or h / 4 when that is 0.
 double contact_reach(const SphereContactOptions& contact, double spacing);
+
+// The distance from the sphere's centre at which a particle of contact radius r touches a sphere of
+// radius R, along the direction whose cosine with the leading direction is cos_theta: R + r for the
+// offset surface, the leading surface's reach above.
+double contact_distance(ContactSurface surface, double R, double r, double cos_theta);
 
 struct RigidSphere {
   double mass_kg = 0.0;

@@ -37,6 +37,12 @@ uhpc_bad_input_case(NAME macro_disc_without_radius
 uhpc_bad_input_case(NAME macro_zero_output_interval
   STDERR "error: data/macro_elastic_block.json: key 'run.output_interval_steps': value 0 is out of range, must be >= 1"
   COMMAND ${_macro} ${_macro_case} --set run.output_interval_steps=0)
+uhpc_bad_input_case(NAME macro_leading_surface_needs_kinematic_contact
+  STDERR "error: data/macro_elastic_block.json: key 'projectile.contact.surface': value 'leading' needs model 'kinematic' (the penalty's force is the gradient of its offset overlap)"
+  COMMAND ${_macro} ${_macro_case} --set projectile.contact.model=penalty --set projectile.contact.surface=leading)
+uhpc_bad_input_case(NAME macro_unknown_contact_surface
+  STDERR "error: data/macro_elastic_block.json: key 'projectile.contact.surface': value 'front' is not one of: offset, leading"
+  COMMAND ${_macro} ${_macro_case} --set projectile.contact.surface=front)
 uhpc_bad_input_case(NAME macro_negative_checkpoint_clock
   STDERR "error: --checkpoint-every-min -1: not a number of minutes >= 0 (0: none)"
   COMMAND ${_macro} ${_macro_case} --checkpoint-every-min -1)

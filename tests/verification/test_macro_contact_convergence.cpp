@@ -29,7 +29,8 @@ struct Resistance {
   double contact_share;  // the contact's dissipation over the sphere's lost kinetic energy
 };
 
-Resistance resistance(double h, double factor, double t = kThick, double stop = kThick) {
+Resistance resistance(double h, double factor, double t = kThick, double stop = kThick,
+                      ContactSurface surface = ContactSurface::Offset) {
   ParticleBody body = box_body(kSide, kSide, t, h);
   for (std::size_t i = 0; i < body.size(); ++i) {
     body.position[3 * i] -= 0.5 * kSide;
@@ -45,6 +46,7 @@ Resistance resistance(double h, double factor, double t = kThick, double stop = 
   sphere.x = {0.0, 0.0, -kRadius - 1e-4};
   sphere.v = {0.0, 0.0, kV0};
   sphere.contact.contact_radius_factor = factor;
+  sphere.contact.surface = surface;
   s.set_sphere(sphere);
   s.initialize();
   while (s.time() < 2e-4) {
@@ -122,6 +124,19 @@ TEST(MacroContactConvergence, DISABLED_StudyThickBlock) {
       if (factor == 0.0 && hk < 0.0015) continue;
       const Resistance r = resistance(hk, factor, 3.0 * kThick, kRadius);
       std::printf("contact radius %.2f h, spacing %.3f mm: impulse %.5f N s, contact's share %.4f\n", factor,
+                  1e3 * hk, r.impulse, r.contact_share);
+      std::fflush(stdout);
+    }
+  }
+}
+
+// The leading surface (h / 2 ahead, R across the motion) on the thin and the thick block, for the study.
+TEST(MacroContactConvergence, DISABLED_StudyLeadingSurface) {
+  for (const double t : {kThick, 3.0 * kThick}) {
+    for (const double hk : {0.003, 0.00225, 0.0015, 0.001125}) {
+      if (t == kThick && hk < 0.0015) continue;
+      const Resistance r = resistance(hk, 0.5, t, t == kThick ? kThick : kRadius, ContactSurface::Leading);
+      std::printf("leading surface, block %.0f mm, spacing %.3f mm: impulse %.5f N s, contact's share %.4f\n", 1e3 * t,
                   1e3 * hk, r.impulse, r.contact_share);
       std::fflush(stdout);
     }

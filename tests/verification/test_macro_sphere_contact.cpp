@@ -101,11 +101,12 @@ void conserves_momentum_and_energy(StrainConfiguration strain, const SphereConta
   }
   const double vz = s.sphere().v[2];
   const double block_pz = s.ledger().momentum[2] - s.ledger().momentum_sphere[2];
-  std::printf("sphere 100 m/s into a free elastic block (%s strain, %s contact): %lld steps, sphere leaves at %.3f m/s, "
+  std::printf("sphere 100 m/s into a free elastic block (%s strain, %s contact, %s surface): %lld steps, sphere leaves at %.3f m/s, "
               "block momentum %.5f of M v0; worst momentum error %.3e, worst energy balance error %.3e of the initial "
               "kinetic energy; contact ledger vs exact penalty potential %.3e J (peak stored %.3e J), contact energy "
               "after release %.3e J\n",
-              name(strain), name(contact.model), static_cast<long long>(s.steps()), vz, block_pz / (kMass * 100.0), worst_p,
+              name(strain), name(contact.model), contact.surface == ContactSurface::Leading ? "leading" : "offset",
+              static_cast<long long>(s.steps()), vz, block_pz / (kMass * 100.0), worst_p,
               worst_e, worst_ledger_gap, peak_stored, s.ledger().contact);
   EXPECT_TRUE(touched);
   EXPECT_LT(vz, 0.0);                             // it bounced off the elastic block
@@ -126,6 +127,13 @@ void conserves_momentum_and_energy(StrainConfiguration strain, const SphereConta
 TEST(MacroSphereContact, ConservesMomentumAndEnergyThroughTheImpact) {
   conserves_momentum_and_energy(SolverOptions{}.strain_configuration, kinematic());
   conserves_momentum_and_energy(SolverOptions{}.strain_configuration, penalty());
+}
+// The leading contact surface (the sphere and the sphere advanced by r_I): the same books, through the
+// rebound, where the direction of motion and so the leading face turn round.
+TEST(MacroSphereContact, ConservesMomentumAndEnergyThroughTheImpactWithTheLeadingSurface) {
+  SphereContactOptions leading = kinematic();
+  leading.surface = ContactSurface::Leading;
+  conserves_momentum_and_energy(SolverOptions{}.strain_configuration, leading);
 }
 TEST(MacroSphereContact, ConservesMomentumAndEnergyThroughTheImpactWithMidpointStrain) {
   conserves_momentum_and_energy(StrainConfiguration::Midpoint, kinematic());
