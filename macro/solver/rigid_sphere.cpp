@@ -15,12 +15,24 @@ double contact_reach(const SphereContactOptions& c, double spacing) {
   return (c.contact_radius_factor > 0.0 ? c.contact_radius_factor : 0.25) * spacing;
 }
 
-double contact_distance(ContactSurface surface, double R, double r, double cos_theta) {
-  if (surface == ContactSurface::Offset) return R + r;
-  if (!(cos_theta > 0.0)) return R;  // behind the equator
-  // The far intersection of the ray with the sphere advanced by r (centre r v / |v|), where it meets it.
-  const double root2 = R * R - r * r * (1.0 - cos_theta * cos_theta);
-  return root2 >= 0.0 ? std::max(R, r * cos_theta + std::sqrt(root2)) : R;
+double contact_gap(const SphereContactOptions& c, double R, double r_I, const double* rel, double* normal) {
+  const double d = std::sqrt(rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]);
+  // A centre at the sphere's centre has no direction: it is pushed along the flight (+z for the offset
+  // surface, as before the leading one).
+  const bool leading = c.surface == ContactSurface::Leading;
+  const Vec3 along = leading ? c.leading_direction : Vec3{0.0, 0.0, 1.0};
+  double gap = d - (R + r_I);
+  for (int k = 0; k < 3; ++k) normal[k] = d > 0.0 ? rel[k] / d : along[k];
+  if (!leading) return gap;
+  gap = d - R;
+  // The advanced sphere: its centre r_I ahead along the flight direction.
+  const double a[3] = {rel[0] - r_I * along[0], rel[1] - r_I * along[1], rel[2] - r_I * along[2]};
+  const double da = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  if (da < d) {
+    gap = da - R;
+    for (int k = 0; k < 3; ++k) normal[k] = da > 0.0 ? a[k] / da : along[k];
+  }
+  return gap;
 }
 
 void RigidSphere::validate() const {
@@ -149,7 +161,6 @@ SphereContactSums SphereContact::kinematic(const RigidSphere& s, const Particles
   const double dt2 = 0.5 * dt_next * (dt + dt_next);
   const double xs[3] = {s.x[0] + dt_next * s.v[0], s.x[1] + dt_next * s.v[1], s.x[2] + dt_next * s.v[2]};
   const double reach_factor = s.contact.contact_radius_factor;
-  const Vec3& ahead = s.contact.leading_direction;  // the leading surface's front
   // 1. Candidates: the particles whose predicted centre comes within one contact radius of touching
   // (a margin for the sphere's own correction), in index order whatever the threads.
 #pragma omp parallel for schedule(static) if (n >= kParallelMinParticles)
@@ -175,23 +186,17 @@ SphereContactSums SphereContact::kinematic(const RigidSphere& s, const Particles
   active_.resize(m);
   for (std::size_t c = 0; c < m; ++c) {
     const std::size_t i = static_cast<std::size_t>(candidates_[c]);
-    double r[3], d2 = 0.0, now2 = 0.0, r_ahead = 0.0, now_ahead = 0.0;
+    double r[3], now[3], unused[3];
     for (int k = 0; k < 3; ++k) {
       const double a = (p.f_int[3 * i + k] + p.f_ext[3 * i + k]) / p.mass[i];
       r[k] = p.x[3 * i + k] + dt_next * p.v[3 * i + k] + dt2 * a - xs[k];
-      d2 += r[k] * r[k];
-      now2 += (p.x[3 * i + k] - s.x[k]) * (p.x[3 * i + k] - s.x[k]);
-      r_ahead += r[k] * ahead[k];
-      now_ahead += (p.x[3 * i + k] - s.x[k]) * ahead[k];
+      now[k] = p.x[3 * i + k] - s.x[k];
     }
-    const double d = std::sqrt(d2), now = std::sqrt(now2), r_I = reach_factor * p.spacing[i];
-    const double reach = contact_distance(s.contact.surface, s.radius_m, r_I, d > 0.0 ? r_ahead / d : 1.0);
-    const double reach_now = contact_distance(s.contact.surface, s.radius_m, r_I, now > 0.0 ? now_ahead / now : 1.0);
+    const double r_I = reach_factor * p.spacing[i];
     // The gap to close: an overlap left by a change of the step (the prediction assumes the next step
     // equals this one) is held, not pushed out, so the contact never throws a particle off.
-    gap_[c] = (d - reach) - std::min(0.0, now - reach_now);
-    // A predicted centre at the sphere's centre has no direction: push it along the sphere's motion.
-    for (int k = 0; k < 3; ++k) normal_[3 * c + k] = d > 0.0 ? r[k] / d : (k == 2 ? 1.0 : 0.0);
+    gap_[c] = contact_gap(s.contact, s.radius_m, r_I, r, normal_.data() + 3 * c) -
+              std::min(0.0, contact_gap(s.contact, s.radius_m, r_I, now, unused));
     active_[c] = gap_[c] < 0.0;
   }
   // 2. The active set: the forces that close every predicted gap of the active particles, the sphere

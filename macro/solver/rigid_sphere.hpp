@@ -4,9 +4,10 @@
 //
 // Each particle I has a contact radius r_I = contact_radius_factor * h_I (default h_I / 2: the
 // particle's half spacing, so the body's surface and not its particle centres meets the sphere, as for
-// the planar walls); it touches the sphere when d_I = |x_I - x_s| < R + r_I. Every pair force is equal
-// and opposite and central (along the line of centres n_I = (x_I - x_s) / d_I), so the contact conserves
-// linear momentum exactly (to round-off) and exerts no torque on the sphere, whose spin is not tracked.
+// the planar walls); it touches the sphere when d_I = |x_I - x_s| < R + r_I (the offset surface; the
+// leading surface below). Every pair force is equal and opposite and, on the offset surface, central
+// (along the line of centres n_I = (x_I - x_s) / d_I), so the contact conserves linear momentum exactly
+// (to round-off) and exerts no torque on the sphere, whose spin is not tracked.
 //
 // Normal contact, two models (SphereContactModel):
 // - Kinematic (default): inelastic in the normal direction, as the paper's kernel contact through the
@@ -48,18 +49,23 @@
 // within R + r_I of its line, a mass rho0 pi (R + r_I)^2, which converges to the sphere's own
 // rho0 pi R^2 as h -> 0 for any factor, and equals it at every spacing for factor 0 (the particles'
 // centres meet the sphere's surface; kinematic model only), whose front then enters each particle's
-// volume by h_I / 2 before it touches. The leading surface (kinematic model only) has both: the union
-// of the sphere and the sphere advanced by r_I along the flight direction e at impact
-// (SphereContactOptions::leading_direction), so the body's surface meets the sphere's front (the reach
-// there is R + r_I) while the union's section across the flight line, and so the swept mass, is the
-// sphere's own at every spacing. Along the ray from the centre at angle theta to e the reach is
-//     max(R, r_I cos theta + sqrt(R^2 - r_I^2 sin^2 theta))   for cos theta > 0 (R where the root is
-// imaginary), R behind the equator. e is the flight direction at impact and not the current velocity:
-// the face that struck keeps its reach when the sphere stops or rebounds (with the velocity the reach
-// of the struck face would drop by r_I at the turn, and the target's surface would strike it again:
-// tried, the elastic block's rebound then lost most of its energy). The forces stay central, so
-// momentum is conserved and the sphere takes no torque as before; a radial correction changes a gap by
-// itself (the reach depends on the direction only), so the active-set solve below is unchanged.
+// volume by h_I / 2 before it touches. The leading surface (kinematic model only) has both: a particle
+// touches the union of the sphere and the sphere advanced by r_I along the flight direction e at impact
+// (SphereContactOptions::leading_direction), so the body's surface meets the sphere's front (R + r_I on
+// the flight line) while the union's section across the flight line, and so the swept mass while the
+// sphere flies along e, is the sphere's own pi R^2 at every spacing. Its gap is the distance to the
+// nearer of the two spheres, min(|x_I - x_s|, |x_I - x_s - r_I e|) - R, and the force acts along that
+// distance's gradient (from the advanced sphere's centre on the front cap): normal to the surface, so a
+// particle that slides on it exchanges no work with the contact. Central forces on this surface would
+// (a sliding particle's radius changes with its direction: a friction of +-r_I / R that gives energy
+// back towards the pole; measured on the elastic block's rebound, 0.9 J given back of 5.1 J). The forces
+// are equal and opposite, so momentum is conserved; the torque of the front cap's forces about the
+// sphere's centre (their lines pass through the advanced centre, on the flight line) is dropped with the
+// spin, as friction's is, and vanishes by symmetry for a normal impact on the axis. e is the flight
+// direction at impact and not the current velocity: the face that struck keeps its reach when the
+// sphere stops or rebounds (with the velocity the reach of the struck face would drop by r_I at the
+// turn, and the target's surface would strike it again: tried, the elastic block's rebound then lost
+// most of its energy). The active-set solve below is the offset surface's with these gaps and normals.
 #include <cstdint>
 #include <vector>
 
@@ -87,10 +93,10 @@ struct SphereContactOptions {
 // contact radius factor x h, or h / 4 when that is 0.
 double contact_reach(const SphereContactOptions& contact, double spacing);
 
-// The distance from the sphere's centre at which a particle of contact radius r touches a sphere of
-// radius R, along the direction whose cosine with the leading direction is cos_theta: R + r for the
-// offset surface, the leading surface's reach above.
-double contact_distance(ContactSurface surface, double R, double r, double cos_theta);
+// The gap of a particle of contact radius r_I at `rel` = x_I - x_s from a sphere of radius R (negative:
+// overlapping) and the unit normal along which the contact pushes it (header: the offset and the
+// leading surface). Allocation-free.
+double contact_gap(const SphereContactOptions& contact, double R, double r_I, const double* rel, double* normal);
 
 struct RigidSphere {
   double mass_kg = 0.0;

@@ -8,6 +8,7 @@
 // are free, so the count is the contact's geometry as its step (prediction, active set) applies it.
 // Measured: the offset surface sweeps 1.532 / 1.381 / 1.251 times the sphere's own section at 3.0 / 2.25 /
 // 1.5 mm (geometry (1 + h / 2R)^2: 1.528 / 1.386 / 1.250), the leading surface 1.004 / 0.994 / 1.001.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -99,24 +100,99 @@ TEST(MacroContactSweptMass, TheLeadingSurfaceSweepsTheSpheresOwnSectionAtEverySp
   }
 }
 
-TEST(MacroContactSweptMass, TheLeadingSurfaceReachesRPlusRAheadAndRAtTheEquatorAndBehind) {
-  const double R = kRadius, r = 0.0015;
-  EXPECT_DOUBLE_EQ(contact_distance(ContactSurface::Offset, R, r, 0.3), R + r);
-  EXPECT_DOUBLE_EQ(contact_distance(ContactSurface::Leading, R, r, 1.0), R + r);   // the front
-  EXPECT_DOUBLE_EQ(contact_distance(ContactSurface::Leading, R, r, 0.0), R);       // the equator, a sphere at rest
-  EXPECT_DOUBLE_EQ(contact_distance(ContactSurface::Leading, R, r, -0.5), R);      // behind
-  // Between: the far point of the advanced sphere on the ray, |d u - r e| = R.
-  for (const double c : {0.9, 0.5, 0.2}) {
-    const double d = contact_distance(ContactSurface::Leading, R, r, c), s = std::sqrt(1.0 - c * c);
-    const double to_advanced_centre = std::hypot(d * s, d * c - r);
-    if (d > R) {
-      EXPECT_NEAR(to_advanced_centre, R, 1e-15) << "cos theta " << c;
+// The gap and normal of both surfaces (contact_gap), with an oblique flight direction e (30 degrees).
+TEST(MacroContactSweptMass, TheLeadingSurfaceIsTheSphereAndTheSphereAdvancedAlongTheFlight) {
+  const double R = kRadius, r = 0.0015, t = std::acos(-1.0) / 6.0;
+  SphereContactOptions offset, leading;
+  leading.surface = ContactSurface::Leading;
+  leading.leading_direction = {std::sin(t), 0.0, std::cos(t)};
+  const Vec3 e = leading.leading_direction, side = {std::cos(t), 0.0, -std::sin(t)};  // side is normal to e
+  double n[3];
+  const auto at = [](const Vec3& u, double d) { return Vec3{d * u[0], d * u[1], d * u[2]}; };
+  // The offset surface: R + r all around, central.
+  const Vec3 q = at(side, R + r + 1e-4);
+  EXPECT_NEAR(contact_gap(offset, R, r, q.data(), n), 1e-4, 1e-15);
+  EXPECT_NEAR(n[0], side[0], 1e-15);
+  // The leading surface: R + r ahead on the flight line, R across it and behind; the normals there.
+  const Vec3 front = at(e, R + r), across = at(side, R), behind = at(e, -R);
+  EXPECT_NEAR(contact_gap(leading, R, r, front.data(), n), 0.0, 1e-15);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(n[k], e[k], 1e-15);
+  EXPECT_NEAR(contact_gap(leading, R, r, across.data(), n), 0.0, 1e-15);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(n[k], side[k], 1e-15);
+  EXPECT_NEAR(contact_gap(leading, R, r, behind.data(), n), 0.0, 1e-15);
+  // Anywhere: the gap is the distance to the nearer sphere less R, the normal its gradient.
+  unsigned state = 12345u;
+  const auto uniform = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) / 16777216.0 - 0.5;
+  };
+  for (int trial = 0; trial < 200; ++trial) {
+    const double x[3] = {0.03 * uniform(), 0.03 * uniform(), 0.03 * uniform()};
+    const double d0 = std::hypot(x[0], x[1], x[2]);
+    const double d1 = std::hypot(x[0] - r * e[0], x[1] - r * e[1], x[2] - r * e[2]);
+    const double g = contact_gap(leading, R, r, x, n);
+    EXPECT_NEAR(g, std::min(d0, d1) - R, 1e-15);
+    if (std::fabs(d0 - d1) < 1e-6) continue;  // the crease: no gradient
+    for (int k = 0; k < 3; ++k) {
+      double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]}, unused[3];
+      xp[k] += 1e-7;
+      xm[k] -= 1e-7;
+      EXPECT_NEAR((contact_gap(leading, R, r, xp, unused) - contact_gap(leading, R, r, xm, unused)) / 2e-7, n[k], 1e-6);
     }
-    // The section across the motion never passes R: d sin theta <= R.
-    EXPECT_LE(d * s, R * (1.0 + 1e-15)) << "cos theta " << c;
   }
-  // Where the advanced sphere is the nearer one (cos theta < r / 2R), the sphere itself.
-  EXPECT_DOUBLE_EQ(contact_distance(ContactSurface::Leading, R, r, 0.5 * r / R * 0.9), R);
+}
+
+// In the contact's step: a particle on the flight line ends its first contact step on the surface, R + r_I
+// from the sphere's centre, moving on with the sphere (restitution 0), for both surfaces; one r_I / 2
+// outside the sphere's section is struck by the offset surface and never by the leading one.
+TEST(MacroContactSweptMass, TheFlightLineIsStruckAtRPlusRAndTheSectionsEdgeOnlyByTheOffsetSurface) {
+  const double h = 0.003, r_I = 0.5 * h, t = std::acos(-1.0) / 6.0;
+  const Vec3 e = {std::sin(t), 0.0, std::cos(t)}, side = {std::cos(t), 0.0, -std::sin(t)};
+  for (const ContactSurface surface : {ContactSurface::Offset, ContactSurface::Leading}) {
+    for (const double lateral : {0.0, kRadius + 0.5 * r_I}) {
+      Particles p;
+      p.n = 1;
+      p.x = {lateral * side[0], lateral * side[1], lateral * side[2]};
+      p.v.assign(3, 0.0);
+      p.f_int.assign(3, 0.0);
+      p.f_ext.assign(3, 0.0);
+      p.mass = {kRho * h * h * h};
+      p.volume0 = {h * h * h};
+      p.spacing = {h};
+      p.wave_speed = {4000.0};
+      RigidSphere s;
+      s.mass_kg = 1e9;
+      s.radius_m = kRadius;
+      s.contact.surface = surface;
+      s.contact.leading_direction = e;
+      const double start = kRadius + 2.0 * h;
+      s.x = {-start * e[0], -start * e[1], -start * e[2]};
+      s.v = {kSpeed * e[0], kSpeed * e[1], kSpeed * e[2]};
+      SphereContact contact;
+      contact.initialize(s, p);
+      double f[3];
+      const double dt = 0.1 * h / kSpeed;
+      bool struck = false;
+      for (int step = 0; step < 400 && !struck; ++step) {
+        contact.compute(s, p, dt, dt, f);
+        struck = f[0] != 0.0 || f[1] != 0.0 || f[2] != 0.0;
+        for (int c = 0; c < 3; ++c) {
+          p.v[c] += f[c] / p.mass[0] * dt;
+          p.x[c] += p.v[c] * dt;
+          s.x[c] += s.v[c] * dt;
+        }
+      }
+      const char* name = surface == ContactSurface::Leading ? "leading" : "offset";
+      if (lateral > 0.0) {
+        EXPECT_EQ(struck, surface == ContactSurface::Offset) << name << ": a particle r_I / 2 outside the section";
+        continue;
+      }
+      ASSERT_TRUE(struck) << name;
+      const double d = std::hypot(p.x[0] - s.x[0], p.x[1] - s.x[1], p.x[2] - s.x[2]);
+      EXPECT_NEAR(d, kRadius + r_I, 1e-9 * kRadius) << name;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(p.v[c], s.v[c], 1e-9 * kSpeed) << name;
+    }
+  }
 }
 
 }  // namespace
