@@ -8,7 +8,8 @@ usage: sweep_report.py sweep COMPARISON_JSON [--experiments TABLE5] [--paper TAB
 
 sweep: COMPARISON_JSON is uhpc-compare-shots' comparison.json over the sweep's runs (every run, matched to
 a Table 5 shot or not). Writes DIR/sweep.csv, sweep.md, sweep.json (per run: impact velocity, outcome,
-residual velocity as counted (0 when not perforated), the Table 5 shot it matched; the fits) and
+residual velocity as counted (0 when not perforated), the Table 5 shot it matched, the plug that left with
+a perforating sphere and the a = m / (m + m_plug) it implies; the fits) and
 sweep.png (residual against impact velocity: the runs, Table 5, the paper's Table 8, the fitted curves
 with the bootstrap band). The Lambert-Jonas fits are pipelines/lambert_jonas.py's (free a, v_bl, p and p
 held at 1), with percentile bootstrap intervals over the runs (resampled with replacement); the
@@ -59,6 +60,18 @@ def run_row(result_file):
             "wall_time_s": r.get("wall_time_s"), "run": str(pathlib.Path(result_file).parent)}
 
 
+def plug_share(result_file):
+    """The plug that leaves with a perforating sphere (result.json's panel.plug: target material moving with
+    at least half the sphere's speed at the end) and the Lambert-Jonas a it implies if sphere and plug share
+    their momentum, a = m / (m + m_plug); None for both when the run did not perforate or has no panel."""
+    r = json.loads(pathlib.Path(result_file).read_text())
+    plug = r.get("panel", {}).get("plug")
+    mass = r.get("inputs", {}).get("projectile", {}).get("mass_kg")
+    if not r.get("perforated") or plug is None or not mass:
+        return None, None
+    return plug["mass_kg"], mass / (mass + plug["mass_kg"])
+
+
 def sweep(args):
     c = json.loads(pathlib.Path(args.comparison).read_text())
     out = pathlib.Path(args.out)
@@ -74,6 +87,7 @@ def sweep(args):
                      "experiment_row": s.get("experiment_row"),
                      "experiment_residual_velocity_m_s": s["experiment"]["residual_velocity_m_s"],
                      "wall_time_s": sim["wall_time_s"], "result_file": s["result_file"]})
+        rows[-1]["plug_mass_kg"], rows[-1]["a_plug"] = plug_share(s["result_file"])
     rows.sort(key=lambda r: r["impact_velocity_m_s"])
     fitted = [r for r in rows if r["residual_velocity_m_s"] is not None]
     v = [r["impact_velocity_m_s"] for r in fitted]
@@ -92,7 +106,8 @@ def sweep(args):
 
     # The table.
     header = ["label", "impact_velocity_m_s", "outcome", "residual_velocity_m_s", "final_velocity_m_s",
-              "end_time_s", "experiment_row", "experiment_residual_velocity_m_s", "wall_time_s", "result_file"]
+              "end_time_s", "experiment_row", "experiment_residual_velocity_m_s", "plug_mass_kg", "a_plug",
+              "wall_time_s", "result_file"]
     with open(out / "sweep.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(header)
@@ -101,13 +116,19 @@ def sweep(args):
     undecided = [r for r in rows if r["residual_velocity_m_s"] is None]
     md = [f"Sweep of {len(rows)} runs, {min(r['impact_velocity_m_s'] for r in rows):g} .. "
           f"{max(r['impact_velocity_m_s'] for r in rows):g} m/s (runs in {pathlib.Path(args.comparison).parent}).", "",
-          "| v0 m/s | outcome | vr m/s | Table 5 vr m/s | wall s |", "|---|---|---|---|---|"]
+          "| v0 m/s | outcome | vr m/s | Table 5 vr m/s | plug g | m / (m + m_plug) | wall s |",
+          "|---|---|---|---|---|---|---|"]
     for r in rows:
         vr_cell = "" if r["residual_velocity_m_s"] is None else f"{r['residual_velocity_m_s']:.1f}"
         exp = r["experiment_residual_velocity_m_s"]
+        plug = "" if r["plug_mass_kg"] is None else f"{1e3 * r['plug_mass_kg']:.1f}"
+        a_plug = "" if r["a_plug"] is None else f"{r['a_plug']:.2f}"
         md.append(f"| {r['impact_velocity_m_s']:g} | {r['outcome']} | {vr_cell} | "
-                  f"{'' if exp is None else f'{exp:g}'} | {r['wall_time_s']:.1f} |")
-    md += ["", "vr: the residual velocity, 0 when the sphere did not perforate (embedded, rebounded)."]
+                  f"{'' if exp is None else f'{exp:g}'} | {plug} | {a_plug} | {r['wall_time_s']:.1f} |")
+    md += ["", "vr: the residual velocity, 0 when the sphere did not perforate (embedded, rebounded). Plug: the "
+           "target material that leaves with the sphere (moving at half its speed or more at the end); "
+           "m / (m + m_plug) is the Lambert-Jonas a if sphere and plug shared their momentum, to set beside the "
+           "fits' a below."]
     if undecided:
         md.append(f"{len(undecided)} run(s) undecided at their end time (no residual velocity; left out of the fit): "
                   + ", ".join(f"{r['impact_velocity_m_s']:g}" for r in undecided)

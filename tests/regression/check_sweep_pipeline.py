@@ -54,6 +54,13 @@ def main():
         check(res["outcome"] != "undecided" and got is not None and abs(got - expected) < 1e-9,
               f"v{r['impact_velocity_m_s']}: table residual {got} = result.json's {expected} ({res['outcome']})")
         check(r["outcome"] == res["outcome"], f"v{r['impact_velocity_m_s']}: outcome {r['outcome']}")
+        # The plug and the a it implies, from the same result.json (empty when the sphere did not perforate).
+        m, m_plug = res["inputs"]["projectile"]["mass_kg"], res["panel"]["plug"]["mass_kg"]
+        if res["perforated"]:
+            check(abs(float(r["plug_mass_kg"]) - m_plug) < 1e-12 and abs(float(r["a_plug"]) - m / (m + m_plug)) < 1e-12,
+                  f"v{r['impact_velocity_m_s']}: plug {r['plug_mass_kg']} kg, a_plug {r['a_plug']} = m / (m + m_plug)")
+        else:
+            check(r["plug_mass_kg"] == "" and r["a_plug"] == "", f"v{r['impact_velocity_m_s']}: no plug when not perforated")
 
     # uhpc-compare-shots kept the run without an experiment, statistics over the two matched ones.
     c = json.loads((sweep / "comparison.json").read_text())
