@@ -22,6 +22,19 @@ namespace {
 
 constexpr double kRadius = 0.00635, kSpeed = 100.0, kRho = 2555.7;
 
+// Free particles of spacing h at the positions p.x: at rest, no internal or external force, the mass of a
+// cube of side h (what the contact reads).
+void make_free(Particles& p, double h) {
+  p.n = p.x.size() / 3;
+  p.v.assign(3 * p.n, 0.0);
+  p.f_int.assign(3 * p.n, 0.0);
+  p.f_ext.assign(3 * p.n, 0.0);
+  p.mass.assign(p.n, kRho * h * h * h);
+  p.volume0.assign(p.n, h * h * h);
+  p.spacing.assign(p.n, h);
+  p.wave_speed.assign(p.n, 4000.0);
+}
+
 // The particles of a lattice of spacing h touched by the sphere whose path is the z line through
 // (ox, oy), counted among those whose z lies in the slab [z0, z0 + depth); the sphere starts clear of the
 // lattice and stops once its rear has passed the slab by 2 h (its section then has passed every particle
@@ -38,14 +51,7 @@ int touched_in_slab(double h, ContactSurface surface, double ox, double oy, doub
         p.x.insert(p.x.end(), {i * h, j * h, k * h});
         z_start.push_back(k * h);
       }
-  p.n = z_start.size();
-  p.v.assign(3 * p.n, 0.0);
-  p.f_int.assign(3 * p.n, 0.0);
-  p.f_ext.assign(3 * p.n, 0.0);
-  p.mass.assign(p.n, kRho * h * h * h);
-  p.volume0.assign(p.n, h * h * h);
-  p.spacing.assign(p.n, h);
-  p.wave_speed.assign(p.n, 4000.0);
+  make_free(p, h);
 
   RigidSphere s;
   s.mass_kg = 1e9;  // keeps its speed
@@ -151,15 +157,8 @@ TEST(MacroContactSweptMass, TheFlightLineIsStruckAtRPlusRAndTheSectionsEdgeOnlyB
   for (const ContactSurface surface : {ContactSurface::Offset, ContactSurface::Leading}) {
     for (const double lateral : {0.0, kRadius + 0.5 * r_I}) {
       Particles p;
-      p.n = 1;
       p.x = {lateral * side[0], lateral * side[1], lateral * side[2]};
-      p.v.assign(3, 0.0);
-      p.f_int.assign(3, 0.0);
-      p.f_ext.assign(3, 0.0);
-      p.mass = {kRho * h * h * h};
-      p.volume0 = {h * h * h};
-      p.spacing = {h};
-      p.wave_speed = {4000.0};
+      make_free(p, h);
       RigidSphere s;
       s.mass_kg = 1e9;
       s.radius_m = kRadius;
