@@ -60,12 +60,19 @@ def run_row(result_file):
             "wall_time_s": r.get("wall_time_s"), "run": str(pathlib.Path(result_file).parent)}
 
 
-def plug_share(result_file):
+def plug_share(result_file, comparison):
     """The plug that leaves with a perforating sphere (result.json's panel.plug: target material moving with
     at least half the sphere's speed at the end) and the Lambert-Jonas a it implies if sphere and plug share
-    their momentum, a = m / (m + m_plug); None for both when the run did not perforate or has no panel."""
-    r = json.loads(pathlib.Path(result_file).read_text())
-    plug = r.get("panel", {}).get("plug")
+    their momentum, a = m / (m + m_plug); None for both when the run did not perforate or has no panel (a
+    result.json of an earlier build)."""
+    path = pathlib.Path(result_file)
+    if not path.is_file():
+        print(f"error: {comparison}: key 'result_file': {result_file} not found from {pathlib.Path.cwd()} "
+              "(uhpc-compare-shots records --results as given: run this from where it ran, or give it absolute "
+              "paths)", file=sys.stderr)
+        sys.exit(2)
+    r = json.loads(path.read_text())
+    plug = (r.get("panel") or {}).get("plug")
     mass = r.get("inputs", {}).get("projectile", {}).get("mass_kg")
     if not r.get("perforated") or plug is None or not mass:
         return None, None
@@ -87,7 +94,7 @@ def sweep(args):
                      "experiment_row": s.get("experiment_row"),
                      "experiment_residual_velocity_m_s": s["experiment"]["residual_velocity_m_s"],
                      "wall_time_s": sim["wall_time_s"], "result_file": s["result_file"]})
-        rows[-1]["plug_mass_kg"], rows[-1]["a_plug"] = plug_share(s["result_file"])
+        rows[-1]["plug_mass_kg"], rows[-1]["a_plug"] = plug_share(s["result_file"], args.comparison)
     rows.sort(key=lambda r: r["impact_velocity_m_s"])
     fitted = [r for r in rows if r["residual_velocity_m_s"] is not None]
     v = [r["impact_velocity_m_s"] for r in fitted]
@@ -126,9 +133,9 @@ def sweep(args):
         md.append(f"| {r['impact_velocity_m_s']:g} | {r['outcome']} | {vr_cell} | "
                   f"{'' if exp is None else f'{exp:g}'} | {plug} | {a_plug} | {r['wall_time_s']:.1f} |")
     md += ["", "vr: the residual velocity, 0 when the sphere did not perforate (embedded, rebounded). Plug: the "
-           "target material that leaves with the sphere (moving at half its speed or more at the end); "
-           "m / (m + m_plug) is the Lambert-Jonas a if sphere and plug shared their momentum, to set beside the "
-           "fits' a below."]
+           "target material that leaves with the sphere (moving at half its speed or more at the end; blank when "
+           "the sphere did not perforate, or for a result.json of an earlier build); m / (m + m_plug) is the "
+           "Lambert-Jonas a if sphere and plug shared their momentum, to set beside the fits' a below."]
     if undecided:
         md.append(f"{len(undecided)} run(s) undecided at their end time (no residual velocity; left out of the fit): "
                   + ", ".join(f"{r['impact_velocity_m_s']:g}" for r in undecided)
