@@ -79,10 +79,15 @@ AfcMaterial::AfcMaterial(const AfcParams& params) : p_(params), hydro_(params) {
           "principal_stress_limit needs tensile_degradation = cutoff (the split already degrades the tension)");
   principal_limit_ = p.options.principal_stress_limit == PrincipalStressLimit::Tmax ? p.Tmax_Pa
                                                                                     : afc_uniaxial_tensile_strength(p);
+  require(!p.options.crack_band_strength_reduction || (p.options.sdel_regularization == SdelRegularization::CrackBand &&
+                                                       p.options.tensile_degradation == TensileDegradation::Cutoff),
+          "crack_band_strength_reduction needs sdel_regularization = crack_band with tensile_degradation = cutoff");
   if (p.options.sdel_regularization == SdelRegularization::CrackBand &&
       p.options.tensile_degradation == TensileDegradation::Cutoff && p.options.tensile_damage == TensileDamage::Sdel) {
     track_tensile_work_ = true;
+    reduce_band_strength_ = p.options.crack_band_strength_reduction;
     build_crack_band_curve();
+    if (reduce_band_strength_) build_band_strength_table();
   }
 }
 
@@ -143,6 +148,7 @@ void AfcMaterial::build_crack_band_curve() {
   // resampled on kBandPoints values of d+, evenly spaced from the onset to 1.
   AfcParams ref = p_;
   ref.options.sdel_regularization = SdelRegularization::Lambda;
+  ref.options.crack_band_strength_reduction = false;  // the reference holds its own band
   ref.options.tensile_rate = TensileRate::Off;
   ref.options.rate_factor_floor = 1.0;  // F = 1 at the driver's slow rate, whatever floor the case sets
   const double l_ref = p_.options.crack_band_reference_size_m;
@@ -185,6 +191,47 @@ void AfcMaterial::build_crack_band_curve() {
   }
   band_.work[0] = 0.0;
   for (int j = 1; j < kBandPoints; ++j) band_.work[j] = std::max(band_.work[j], band_.work[j - 1]);
+}
+
+std::pair<double, double> AfcMaterial::uniaxial_peak(double tmax_scale) const {
+  const double K = hydro_.elastic_bulk_modulus(), G = p_.shear_modulus_Pa, E = 9.0 * K * G / (3.0 * K + G);
+  const double ft = afc_uniaxial_tensile_strength(p_), a = ft / (1.0 - ft / (3.0 * p_.Tmax_Pa));  // a = S(0)
+  const double l_ref = p_.options.crack_band_reference_size_m;
+  const auto damage = [&](double e) { return std::min(sdel_damage(e, l_ref), band_.onset); };
+  const auto excess = [&](double e) {  // E e less the limit at the d+ of e: rises with e
+    const double T = tmax_scale * p_.Tmax_Pa * (1.0 - damage(e));
+    return E * e - (T > 0.0 ? a / (1.0 + a / (3.0 * T)) : 0.0);
+  };
+  double lo = 0.0, hi = 2.0 * afc_uniaxial_tensile_strength(p_) / E;
+  for (int i = 0; i < 200; ++i) (excess(0.5 * (lo + hi)) < 0.0 ? lo : hi) = 0.5 * (lo + hi);
+  return {hi, damage(hi)};
+}
+
+void AfcMaterial::build_band_strength_table() {
+  const double K = hydro_.elastic_bulk_modulus(), G = p_.shear_modulus_Pa, E = 9.0 * K * G / (3.0 * K + G);
+  const auto peak_energy = [&](double scale) {
+    const double e = uniaxial_peak(scale).first;
+    return 0.5 * E * e * e;
+  };
+  const double holding = peak_energy(1.0);
+  for (int k = 0; k < kStrengthPoints; ++k) {
+    const double ratio = std::pow(kStrengthRange, static_cast<double>(k) / (kStrengthPoints - 1));  // w / w_lim
+    double lo = 0.0, hi = 1.0;
+    for (int i = 0; i < 100; ++i) (peak_energy(0.5 * (lo + hi)) < holding / ratio ? lo : hi) = 0.5 * (lo + hi);
+    strength_.scale[k] = lo;
+    strength_.peak_damage[k] = uniaxial_peak(lo).second;
+  }
+}
+
+AfcMaterial::BandStrength AfcMaterial::band_strength(double band_width_m) const {
+  const double w_lim = kHoldingWidth * p_.options.crack_band_reference_size_m;
+  if (!reduce_band_strength_ || !(band_width_m > w_lim)) return {1.0, band_.onset};
+  const double x = std::log(band_width_m / w_lim) / std::log(kStrengthRange) * (kStrengthPoints - 1);
+  if (!(x < kStrengthPoints - 1)) return {strength_.scale.back(), strength_.peak_damage.back()};
+  const int k = static_cast<int>(x);
+  const double t = x - k;
+  return {strength_.scale[k] + t * (strength_.scale[k + 1] - strength_.scale[k]),
+          strength_.peak_damage[k] + t * (strength_.peak_damage[k + 1] - strength_.peak_damage[k])};
 }
 
 void AfcMaterial::update(State& st, const MaterialStep& step) const {
@@ -263,14 +310,22 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
         // own work at its fixed strain increment is unstable, a falling limit at fixed strain releases
         // several times what it releases on the equilibrium path, and substeps at fixed strain are too).
         const double energy_scale = band_width(step.spacing_m) / o.crack_band_reference_size_m / (st.tensile_dif * st.tensile_dif);
-        const double before_onset = std::min(sdel_damage(st.tensile_strain_max, o.crack_band_reference_size_m), band_.onset);
-        st.d_plus = std::max(st.d_plus, std::max(before_onset, crack_band_damage(st.tensile_work * energy_scale)));
+        // A band with its strength reduced peaks at a lower d+ than the reference's onset: its curve starts
+        // at its own peak, from the same work, so that d+ never jumps to the onset.
+        const double peak = reduce_band_strength_ ? band_strength(band_width(step.spacing_m)).peak_damage : band_.onset;
+        const double before_onset = std::min(sdel_damage(st.tensile_strain_max, o.crack_band_reference_size_m), peak);
+        double after_onset = crack_band_damage(st.tensile_work * energy_scale);
+        if (after_onset > 0.0 && peak < band_.onset)
+          after_onset = peak + (1.0 - peak) * (after_onset - band_.onset) / (1.0 - band_.onset);
+        st.d_plus = std::max(st.d_plus, std::max(before_onset, after_onset));
       }
     }
   } else if (rate) {
     st.tensile_dif = dif_now;  // no damage to hold it for: the cutoff follows the rate
   }
-  const double dif = st.tensile_dif;  // 1 without the option
+  // The factor on the tensile limits: the DIF (1 without the rate option) and, with the crack band's
+  // strength reduction, the band's factor on Tmax (1 for a band the law holds).
+  const double dif = st.tensile_dif * (reduce_band_strength_ ? band_strength(band_width(step.spacing_m)).tmax_scale : 1.0);
 
   // 3. Effective stress: pressure with the cutoff, deviator returned at fixed pressure onto S. With the
   // split, d+ acts on the stress handed to the solver (5.), not on these limits.

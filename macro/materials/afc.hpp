@@ -28,6 +28,7 @@
 // d- enters the strength with its value at the start of the step (explicit), d+ with the new value.
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "materials/afc_hydrostat.hpp"
@@ -126,6 +127,16 @@ class AfcMaterial {
   double crack_band_onset() const { return band_.onset; }
   // The width of the band a point of spacing h stands for (AfcOptions::crack_band_width_spacings).
   double band_width(double spacing_m) const { return p_.options.crack_band_width_spacings * spacing_m; }
+  // AfcOptions::crack_band_strength_reduction: the factor on Tmax of a band `band_width_m` wide and the d+ at
+  // its peak in quasi-static uniaxial stress (1 and the reference's onset for a band the law holds).
+  struct BandStrength {
+    double tmax_scale = 1.0;
+    double peak_damage = 0.0;
+  };
+  BandStrength band_strength(double band_width_m) const;
+  // The widest band, in reference sizes l_ref, the cutoff coupling's crack band holds to at a point (its
+  // energy within 0.5 %: 1.2 l_ref, measured in unit.AfcCrackBand).
+  static constexpr double kHoldingWidth = 1.2;
 
  private:
   // The principal-stress limit's return of the deviator s at pressure P (AfcOptions::principal_stress_limit).
@@ -133,6 +144,11 @@ class AfcMaterial {
 
   // The reference curve of SdelRegularization::CrackBand (construction).
   void build_crack_band_curve();
+  // AfcOptions::crack_band_strength_reduction (construction): the table of band_strength.
+  void build_band_strength_table();
+  // The strain and d+ at the peak of quasi-static uniaxial stress with Tmax scaled by s (the crack band's
+  // pre-onset d+ = min(SDEL(kappa, l_ref), onset); no rate, d- = 0): E eps = a / (1 + a / (3 s Tmax (1 - d+))).
+  std::pair<double, double> uniaxial_peak(double tmax_scale) const;
 
   AfcParams p_;
   AfcHydrostat hydro_;
@@ -141,11 +157,20 @@ class AfcMaterial {
   // the reference point in uniaxial tension at kBandPoints values of d+ evenly spaced from the onset to 1.
   // A fixed array: copying the law (the solver's saved state) allocates nothing.
   bool track_tensile_work_ = false;  // accumulate State::tensile_work (the crack band and its reference)
+  bool reduce_band_strength_ = false;  // AfcOptions::crack_band_strength_reduction, on a crack band it acts on
   static constexpr int kBandPoints = 512;
   struct CrackBandCurve {
     double onset = 1.0;
     std::array<double, kBandPoints> work{};
   } band_;
+  // The table of band_strength: at kStrengthPoints widths log-spaced from w_lim = kHoldingWidth l_ref to
+  // kStrengthRange w_lim, the factor on Tmax that puts the elastic energy at the band's peak at the holding
+  // band's times w_lim / w (so the peak never holds more than the band's share of G_ref), and the peak's d+.
+  static constexpr int kStrengthPoints = 64;
+  static constexpr double kStrengthRange = 20.0;
+  struct BandStrengthTable {
+    std::array<double, kStrengthPoints> scale{}, peak_damage{};
+  } strength_;
 };
 
 }  // namespace uhpc::macro

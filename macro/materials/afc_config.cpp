@@ -49,6 +49,11 @@ AfcOptions afc_options_from_config(const uhpc::Config& c, AfcOptions o) {
     o.crack_band_reference_size_m = c.number("crack_band_reference_size_m", Range::positive());
   if (c.has("crack_band_width_spacings"))
     o.crack_band_width_spacings = c.number("crack_band_width_spacings", Range::closed(1.0, 8.0));
+  if (c.has("crack_band_strength_reduction")) o.crack_band_strength_reduction = c.flag("crack_band_strength_reduction");
+  if (o.crack_band_strength_reduction &&
+      (o.sdel_regularization != SdelRegularization::CrackBand || o.tensile_degradation != TensileDegradation::Cutoff))
+    c.fail("crack_band_strength_reduction",
+           "needs sdel_regularization 'crack_band' with tensile_degradation 'cutoff' (it lowers the strength of a band too wide to hold)");
   if (c.has("tensile_damage"))
     o.tensile_damage = c.choice("tensile_damage", {"sdel", "off"}) == "off" ? TensileDamage::Off : TensileDamage::Sdel;
   if (c.has("wave_speed_from_unloading_modulus"))

@@ -153,6 +153,15 @@ struct AfcOptions {
   // (the RK support of 2.5 h strains the layers beside an opening one: docs/studies/2026-12-06-crack-band.md),
   // which is what 3 stands for. The band's limit (above) then reads n_b h up to about 1.4 l_ref.
   double crack_band_width_spacings = 1.0;
+  // [choice] Bazant and Oh's strength reduction for bands too wide to hold (SdelRegularization::CrackBand with
+  // the cutoff coupling). false (default): the strength is kept, and a band w = n_b h wider than the law
+  // holds to (w_lim = AfcMaterial::kHoldingWidth l_ref = 7.8 mm) snaps back at its peak (its elastic energy
+  // there exceeds its share of G_ref) and dissipates more. true: such a point's Tmax is lowered so that its
+  // elastic energy at the peak of quasi-static uniaxial stress (where E eps meets the limit at the d+ the
+  // SDEL gives that strain) is the holding band's times w_lim / w, and its d+ curve starts at that peak's d+
+  // (AfcMaterial::band_strength, tabulated at construction). What it dissipates is still the band's share:
+  // G = w W = l_ref W_ref at a point, in uniaxial stress and laterally held (unit.AfcCrackBand).
+  bool crack_band_strength_reduction = false;
   // Verification switch (not a modelling choice of the paper): TensileDamage::Off keeps d+ = 0.
   TensileDamage tensile_damage = TensileDamage::Sdel;
   // [choice] The wave speed (hence the stable step) uses the current tangent bulk modulus of the

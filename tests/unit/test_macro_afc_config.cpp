@@ -41,6 +41,7 @@ TEST(AfcConfig, ShippedFilesGiveTable6AndTheHandoff) {
   EXPECT_EQ(p.options.sdel_regularization, SdelRegularization::Lambda);
   EXPECT_EQ(p.options.crack_band_reference_size_m, 0.0065);
   EXPECT_EQ(p.options.crack_band_width_spacings, 1.0);
+  EXPECT_FALSE(p.options.crack_band_strength_reduction);
   EXPECT_EQ(p.options.tensile_damage, TensileDamage::Sdel);
   EXPECT_FALSE(p.options.wave_speed_from_unloading_modulus);
   EXPECT_NO_THROW(AfcMaterial{p});
@@ -105,6 +106,11 @@ TEST(AfcConfig, BadInputNamesFileKeyAndReason) {
   EXPECT_EQ(error_with({"options.crack_band_width_spacings=0.5"}).rfind(
                 kAfc + ": key 'options.crack_band_width_spacings': value 0.5 is out of range", 0),
             0u);
+  EXPECT_TRUE(load_afc_params(kAfc, kSdel, {"options.sdel_regularization=crack_band", "options.crack_band_strength_reduction=true"})
+                  .options.crack_band_strength_reduction);
+  EXPECT_EQ(error_with({"options.crack_band_strength_reduction=true"}),
+            kAfc + ": key 'options.crack_band_strength_reduction': needs sdel_regularization 'crack_band' with "
+                   "tensile_degradation 'cutoff' (it lowers the strength of a band too wide to hold)");
   EXPECT_EQ(error_with({"options.lode=mohr"}),
             kAfc + ": key 'options.lode': value 'mohr' is not one of: off, willam_warnke");
   EXPECT_EQ(error_with({"options.tensile_degradation=split", "options.principal_stress_limit=tmax"}),

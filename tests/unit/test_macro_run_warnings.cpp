@@ -66,6 +66,11 @@ TEST(MacroRunWarnings, ACrackBandPastItsLimitAtTheImpactPointIsFlagged) {
                                              "options.tensile_degradation=split"}),
                                         shipped)),
             V{"crack_band_too_wide"});
+  // With the strength reduction the wide band is held: nothing to say.
+  EXPECT_EQ(codes(warnings_for_material(afc({"options.sdel_regularization=crack_band", "options.crack_band_width_spacings=3",
+                                             "options.crack_band_strength_reduction=true"}),
+                                        settings_of("macro_disc_afc_coarse.json"))),
+            V{});
   // No tensile damage at all (the verification switch): the band does nothing, nothing to say.
   EXPECT_EQ(codes(warnings_for_material(afc({"options.sdel_regularization=crack_band", "options.crack_band_width_spacings=3",
                                              "options.tensile_damage=off"}),
