@@ -32,12 +32,12 @@ std::vector<RunWarning> warnings_for_material(const MaterialSet& material, const
   const auto* afc = std::get_if<MaterialBlock<AfcMaterial>>(&material);
   if (!afc) return w;
   const AfcOptions& o = afc->law.params().options;
-  // With the strength reduction a wider band is held (its strength lowered), so there is nothing to say.
-  if (o.sdel_regularization != SdelRegularization::CrackBand || o.tensile_damage == TensileDamage::Off ||
-      o.crack_band_strength_reduction)
-    return w;
+  if (o.sdel_regularization != SdelRegularization::CrackBand || o.tensile_damage == TensileDamage::Off) return w;
   const double spacing_m = impact_point_spacing(settings), band = afc->law.band_width(spacing_m);
-  const double factor = o.tensile_degradation == TensileDegradation::Split ? kCrackBandLimitSplit : kCrackBandLimitCutoff;
+  // With the strength reduction a wider band is held (its strength lowered) up to the reduction's range.
+  const double factor = o.crack_band_strength_reduction ? AfcMaterial::kStrengthRange * AfcMaterial::kHoldingWidth
+                        : o.tensile_degradation == TensileDegradation::Split ? kCrackBandLimitSplit
+                                                                              : kCrackBandLimitCutoff;
   const double limit = factor * o.crack_band_reference_size_m;
   if (band > limit)
     w.push_back({"crack_band_too_wide",

@@ -135,8 +135,11 @@ class AfcMaterial {
   };
   BandStrength band_strength(double band_width_m) const;
   // The widest band, in reference sizes l_ref, the cutoff coupling's crack band holds to at a point (its
-  // energy within 0.5 %: 1.2 l_ref, measured in unit.AfcCrackBand).
+  // energy within 0.5 %: +0.01 % at 1.2 l_ref, +1.3 % at 1.4 l_ref).
   static constexpr double kHoldingWidth = 1.2;
+  // The widest band the strength reduction holds, in w_lim (its table's range; past it the factor stays
+  // at the table's last and the band snaps back again: the crack_band_too_wide warning says so).
+  static constexpr double kStrengthRange = 20.0;
 
  private:
   // The principal-stress limit's return of the deviator s at pressure P (AfcOptions::principal_stress_limit).
@@ -148,6 +151,8 @@ class AfcMaterial {
   void build_band_strength_table();
   // The strain and d+ at the peak of quasi-static uniaxial stress with Tmax scaled by s (the crack band's
   // pre-onset d+ = min(SDEL(kappa, l_ref), onset); no rate, d- = 0): E eps = a / (1 + a / (3 s Tmax (1 - d+))).
+  // The Lode factor and the principal-stress limit are not in it: with them the factor is approximate (the
+  // band's energy still holds, within 2 % measured, but d+ may jump by 0.05 at the first yielding step).
   std::pair<double, double> uniaxial_peak(double tmax_scale) const;
 
   AfcParams p_;
@@ -167,7 +172,6 @@ class AfcMaterial {
   // kStrengthRange w_lim, the factor on Tmax that puts the elastic energy at the band's peak at the holding
   // band's times w_lim / w (so the peak never holds more than the band's share of G_ref), and the peak's d+.
   static constexpr int kStrengthPoints = 64;
-  static constexpr double kStrengthRange = 20.0;
   struct BandStrengthTable {
     std::array<double, kStrengthPoints> scale{}, peak_damage{};
   } strength_;

@@ -66,11 +66,17 @@ TEST(MacroRunWarnings, ACrackBandPastItsLimitAtTheImpactPointIsFlagged) {
                                              "options.tensile_degradation=split"}),
                                         shipped)),
             V{"crack_band_too_wide"});
-  // With the strength reduction the wide band is held: nothing to say.
+  // With the strength reduction the wide band is held, up to the reduction's range (24 l_ref = 156 mm):
+  // nothing to say for the coarse disc's 18 mm; a reference size of 0.5 mm puts 18 mm past it.
   EXPECT_EQ(codes(warnings_for_material(afc({"options.sdel_regularization=crack_band", "options.crack_band_width_spacings=3",
                                              "options.crack_band_strength_reduction=true"}),
                                         settings_of("macro_disc_afc_coarse.json"))),
             V{});
+  EXPECT_EQ(codes(warnings_for_material(afc({"options.sdel_regularization=crack_band", "options.crack_band_width_spacings=3",
+                                             "options.crack_band_strength_reduction=true",
+                                             "options.crack_band_reference_size_m=0.0005"}),
+                                        settings_of("macro_disc_afc_coarse.json"))),
+            V{"crack_band_too_wide"});
   // No tensile damage at all (the verification switch): the band does nothing, nothing to say.
   EXPECT_EQ(codes(warnings_for_material(afc({"options.sdel_regularization=crack_band", "options.crack_band_width_spacings=3",
                                              "options.tensile_damage=off"}),
