@@ -259,6 +259,9 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   const double dmu_p = mu_p - st.crushing_strain;
   st.crushing_work += hydro_.crushing_dissipation(mu_max_old, st.mu_max, st.opening_strain);
 
+  // The crack band's strength reduction of this point's band (none: Tmax as it is, the reference's onset).
+  const BandStrength band = reduce_band_strength_ ? band_strength(band_width(step.spacing_m)) : BandStrength{1.0, band_.onset};
+
   // 2. Tensile damage (never decreasing: kappa and d+ are history maxima).
   bool crack_band_growing = false;  // the split's CrackBand and kappa grew in this step
   if (o.tensile_damage == TensileDamage::Sdel) {
@@ -312,7 +315,7 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
         const double energy_scale = band_width(step.spacing_m) / o.crack_band_reference_size_m / (st.tensile_dif * st.tensile_dif);
         // A band with its strength reduced peaks at a lower d+ than the reference's onset: its curve starts
         // at its own peak, from the same work, so that d+ never jumps to the onset.
-        const double peak = reduce_band_strength_ ? band_strength(band_width(step.spacing_m)).peak_damage : band_.onset;
+        const double peak = band.peak_damage;
         const double before_onset = std::min(sdel_damage(st.tensile_strain_max, o.crack_band_reference_size_m), peak);
         double after_onset = crack_band_damage(st.tensile_work * energy_scale);
         if (after_onset > 0.0 && peak < band_.onset)
@@ -325,7 +328,7 @@ void AfcMaterial::update(State& st, const MaterialStep& step) const {
   }
   // The factor on the tensile limits: the DIF (1 without the rate option) and, with the crack band's
   // strength reduction, the band's factor on Tmax (1 for a band the law holds).
-  const double dif = st.tensile_dif * (reduce_band_strength_ ? band_strength(band_width(step.spacing_m)).tmax_scale : 1.0);
+  const double dif = st.tensile_dif * band.tmax_scale;
 
   // 3. Effective stress: pressure with the cutoff, deviator returned at fixed pressure onto S. With the
   // split, d+ acts on the stress handed to the solver (5.), not on these limits.
