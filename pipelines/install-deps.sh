@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs, from Debian 12 packages, everything the project builds, tests and plots with.
 # Idempotent and non-interactive: packages already present are skipped by apt itself.
-#   --with-lammps  also install LAMMPS (Debian's `lammps`, the `lmp` program) and Open MPI's mpirun, for
-#                  `make -C pipelines bench-lammps` only; the build, the tests and CI do not need them.
+#   --with-lammps  also install LAMMPS (Debian's `lammps`, the `lmp` program), for
+#                  `make -C pipelines bench-lammps` only; the build, the tests and CI do not need it.
 #   --with-slurm   also install a single-node Slurm (slurmctld, slurmd, slurm-client, munge) for
 #                  `make -C pipelines test-slurm` (ctest regression.slurm installs it this way when it
 #                  is missing and it runs as root; docs/cluster.md).
@@ -38,10 +38,12 @@ packages=(
   python3 python3-matplotlib python3-numpy python3-h5py
   # uncertainty quantification: distributions, bootstrap draws (make -C pipelines uq-sdel)
   python3-openturns
+  # the distributed layer: MPI (Open MPI, its mpirun for the tests) and Zoltan's partitioner
+  libopenmpi-dev openmpi-bin libtrilinos-zoltan-dev
 )
 if [ "$with_lammps" -eq 1 ]; then
-  # the speed peer of the macro benchmark: lmp, and mpirun for its 2-process run
-  packages+=(lammps openmpi-bin)
+  # the speed peer of the macro benchmark: lmp (mpirun for its 2-process run is installed always)
+  packages+=(lammps)
 fi
 if [ "$with_slurm" -eq 1 ]; then
   packages+=(slurmctld slurmd slurm-client munge)

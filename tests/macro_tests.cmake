@@ -42,3 +42,32 @@ uhpc_add_test(unit unit/test_macro_run_warnings.cpp uhpc_macro_app)
 uhpc_add_test(unit unit/test_macro_panel_damage.cpp uhpc_macro_app)
 uhpc_add_test(unit unit/test_macro_impact_outcome.cpp uhpc_macro_app)
 add_dependencies(unit_test_macro_checkpoint uhpc-macro)  # the restart test runs the program
+
+# The distributed layer under mpirun at 1-4 ranks (oversubscribed on small machines) and as a program
+# started without mpirun (one rank). Open MPI refuses root unless told; CI runs as root, so the tests
+# say so themselves, as Open MPI documents; the machine is not configured for it.
+if(UHPC_MPI)
+  add_executable(unit_test_macro_distributed unit/test_macro_distributed.cpp)
+  target_link_libraries(unit_test_macro_distributed PRIVATE uhpc_macro_distributed GTest::gtest uhpc_warnings)
+  set(_uhpc_mpi_env "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMP_NUM_THREADS=1"
+                    "OMPI_MCA_btl_vader_single_copy_mechanism=none;OMPI_MCA_rmaps_base_oversubscribe=1")
+  foreach(np 1 2 3 4)
+    add_test(NAME unit.MacroDistributed.ranks_${np}
+             COMMAND ${UHPC_MPIEXEC} -np ${np} $<TARGET_FILE:unit_test_macro_distributed>)
+    set_tests_properties(unit.MacroDistributed.ranks_${np} PROPERTIES LABELS unit TIMEOUT 180
+                         ENVIRONMENT "${_uhpc_mpi_env}")
+  endforeach()
+  add_test(NAME unit.MacroDistributed.without_mpirun COMMAND unit_test_macro_distributed)
+  set_tests_properties(unit.MacroDistributed.without_mpirun PROPERTIES LABELS unit TIMEOUT 180
+                       ENVIRONMENT "${_uhpc_mpi_env}")
+  # The halo's depth on the real rows and internal force: the serial force bit for bit at 1-4 ranks.
+  add_executable(verification_test_macro_distributed_rows verification/test_macro_distributed_rows.cpp)
+  target_link_libraries(verification_test_macro_distributed_rows PRIVATE uhpc_macro_distributed uhpc_macro_solver
+                        GTest::gtest uhpc_warnings)
+  foreach(np 1 2 3 4)
+    add_test(NAME verification.MacroDistributedRows.ranks_${np}
+             COMMAND ${UHPC_MPIEXEC} -np ${np} $<TARGET_FILE:verification_test_macro_distributed_rows>)
+    set_tests_properties(verification.MacroDistributedRows.ranks_${np} PROPERTIES LABELS verification
+                         TIMEOUT 300 ENVIRONMENT "${_uhpc_mpi_env}")
+  endforeach()
+endif()

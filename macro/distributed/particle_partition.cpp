@@ -1,0 +1,132 @@
+#include "distributed/particle_partition.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include <zoltan.h>
+
+#include "distributed/zoltan_error.hpp"
+
+#include "distributed/transfer.hpp"
+
+namespace uhpc::macro::distributed {
+
+// Zoltan's query functions: the owned particles of the set being balanced, one id each (local id =
+// position in the set), unit weights, their positions.
+struct ZoltanCallbacks {
+  static const ParticleSet& set(void* data) { return *static_cast<ParticlePartition*>(data)->current_; }
+  static int count(void* data, int* ierr) {
+    *ierr = ZOLTAN_OK;
+    return static_cast<int>(set(data).size());
+  }
+  static void list(void* data, int, int, ZOLTAN_ID_PTR gids, ZOLTAN_ID_PTR lids, int, float*, int* ierr) {
+    const ParticleSet& s = set(data);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      gids[i] = static_cast<ZOLTAN_ID_TYPE>(s.id[i]);
+      lids[i] = static_cast<ZOLTAN_ID_TYPE>(i);
+    }
+    *ierr = ZOLTAN_OK;
+  }
+  static int dimension(void*, int* ierr) {
+    *ierr = ZOLTAN_OK;
+    return 3;
+  }
+  static void positions(void* data, int, int, int n, ZOLTAN_ID_PTR, ZOLTAN_ID_PTR lids, int, double* x, int* ierr) {
+    const ParticleSet& s = set(data);
+    for (int k = 0; k < n; ++k) std::copy(s.at(lids[k]), s.at(lids[k]) + 3, x + 3 * k);
+    *ierr = ZOLTAN_OK;
+  }
+};
+
+ParticlePartition::ParticlePartition(MPI_Comm comm, PartitionOptions options) : comm_(comm), options_(options) {
+  if (!(options_.balance_tolerance >= 1.0) || !(options_.rebalance_threshold >= options_.balance_tolerance))
+    throw std::invalid_argument("ParticlePartition: need 1 <= balance_tolerance <= rebalance_threshold");
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+  float version = 0.0f;
+  check_zoltan(Zoltan_Initialize(0, nullptr, &version), "Zoltan_Initialize");
+  zz_ = Zoltan_Create(comm_);
+  if (!zz_) throw std::runtime_error("Zoltan_Create failed");
+  const std::string tolerance = std::to_string(options_.balance_tolerance);
+  const char* params[][2] = {{"LB_METHOD", "RCB"},      {"KEEP_CUTS", "1"},         {"RCB_REUSE", "1"},
+                             {"AVERAGE_CUTS", "1"},     {"NUM_GID_ENTRIES", "1"},   {"NUM_LID_ENTRIES", "1"},
+                             {"OBJ_WEIGHT_DIM", "0"},   {"RETURN_LISTS", "PARTS"},  {"DEBUG_LEVEL", "0"},
+                             {"RCB_OUTPUT_LEVEL", "0"}, {"IMBALANCE_TOL", tolerance.c_str()}};
+  for (const auto& p : params) check_zoltan(Zoltan_Set_Param(zz_, p[0], p[1]), p[0]);
+  Zoltan_Set_Num_Obj_Fn(zz_, &ZoltanCallbacks::count, this);
+  Zoltan_Set_Obj_List_Fn(zz_, &ZoltanCallbacks::list, this);
+  Zoltan_Set_Num_Geom_Fn(zz_, &ZoltanCallbacks::dimension, this);
+  Zoltan_Set_Geom_Multi_Fn(zz_, &ZoltanCallbacks::positions, this);
+  procs_.resize(static_cast<std::size_t>(size_));
+  parts_.resize(static_cast<std::size_t>(size_));
+}
+
+ParticlePartition::~ParticlePartition() { Zoltan_Destroy(&zz_); }
+
+void ParticlePartition::balance(ParticleSet& owned) {
+  current_ = &owned;
+  int changes = 0, gid_entries = 0, lid_entries = 0, n_import = 0, n_export = 0;
+  ZOLTAN_ID_PTR import_gids = nullptr, import_lids = nullptr, export_gids = nullptr, export_lids = nullptr;
+  int *import_procs = nullptr, *import_parts = nullptr, *export_procs = nullptr, *export_parts = nullptr;
+  const int code = Zoltan_LB_Partition(zz_, &changes, &gid_entries, &lid_entries, &n_import, &import_gids,
+                                       &import_lids, &import_procs, &import_parts, &n_export, &export_gids,
+                                       &export_lids, &export_procs, &export_parts);
+  current_ = nullptr;
+  check_zoltan(code, "Zoltan_LB_Partition");
+  // RETURN_LISTS PARTS: the "export" lists name every owned particle's new part (= rank).
+  std::vector<int> owner(owned.size(), rank_);
+  for (int k = 0; k < n_export; ++k) owner[export_lids[k]] = export_procs[k];
+  Zoltan_LB_Free_Part(&import_gids, &import_lids, &import_procs, &import_parts);
+  Zoltan_LB_Free_Part(&export_gids, &export_lids, &export_procs, &export_parts);
+  ++balances_;
+  send_to_owners(owned, owner);
+}
+
+void ParticlePartition::migrate(ParticleSet& owned) {
+  if (!balanced()) throw std::logic_error("ParticlePartition::migrate: no cuts yet (balance first)");
+  std::vector<int> owner(owned.size());
+  for (std::size_t i = 0; i < owned.size(); ++i) owner[i] = rank_of(owned.at(i));
+  send_to_owners(owned, owner);
+}
+
+void ParticlePartition::send_to_owners(ParticleSet& owned, const std::vector<int>& owner) {
+  std::vector<std::uint32_t> rows(owned.size());
+  std::iota(rows.begin(), rows.end(), std::uint32_t{0});
+  Transfer transfer(std::move(rows), owner, comm_);
+  owned = transfer.carry(owned);
+}
+
+double ParticlePartition::imbalance(const ParticleSet& owned) const {
+  const long long mine = static_cast<long long>(owned.size());
+  long long most = 0, total = 0;
+  MPI_Allreduce(&mine, &most, 1, MPI_LONG_LONG, MPI_MAX, comm_);
+  MPI_Allreduce(&mine, &total, 1, MPI_LONG_LONG, MPI_SUM, comm_);
+  if (total == 0) return 1.0;
+  return static_cast<double>(most) * size_ / static_cast<double>(total);
+}
+
+bool ParticlePartition::rebalance_if_needed(ParticleSet& owned) {
+  migrate(owned);
+  if (imbalance(owned) <= options_.rebalance_threshold) return false;
+  balance(owned);
+  return true;
+}
+
+int ParticlePartition::rank_of(const double x[3]) const {
+  int proc = -1, part = -1;
+  check_zoltan(Zoltan_LB_Point_PP_Assign(zz_, const_cast<double*>(x), &proc, &part), "Zoltan_LB_Point_PP_Assign");
+  return proc;
+}
+
+void ParticlePartition::ranks_meeting(const double lo[3], const double hi[3], std::vector<int>& ranks) const {
+  int n_procs = 0, n_parts = 0;
+  check_zoltan(Zoltan_LB_Box_PP_Assign(zz_, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], procs_.data(), &n_procs,
+                                parts_.data(), &n_parts),
+        "Zoltan_LB_Box_PP_Assign");
+  ranks.assign(procs_.begin(), procs_.begin() + n_procs);
+  std::sort(ranks.begin(), ranks.end());
+}
+
+}  // namespace uhpc::macro::distributed

@@ -1,0 +1,222 @@
+// The distributed layer (macro/distributed/), run by ctest under mpirun at 1-4 ranks and once without
+// mpirun: Zoltan's RCB owns every particle once and evenly, particles that leave their region move to
+// its rank, a crowded partition is balanced again, and the halo brings every particle that a rank's
+// rows and their nodes' rows can read, checked against a brute-force search of the whole body.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <vector>
+
+#include "distributed/halo.hpp"
+#include "distributed/mpi_session.hpp"
+#include "distributed/particle_partition.hpp"
+#include "distributed/particle_set.hpp"
+
+namespace {
+
+using namespace uhpc::macro::distributed;
+
+constexpr int kWidth = 5;          // x, y, z, support radius a, a payload
+constexpr double kSkin = 0.3;      // spacing 1
+constexpr int kNx = 40, kNy = 10, kNz = 10;
+
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+int ranks() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+double jitter(std::uint32_t id, int k) {  // deterministic, in [-0.2, 0.2)
+  std::uint32_t h = id * 2654435761u + static_cast<std::uint32_t>(k) * 40503u;
+  h ^= h >> 13;
+  h *= 0x5bd1e995u;
+  h ^= h >> 15;
+  return 0.4 * (static_cast<double>(h % 10000u) / 10000.0) - 0.2;
+}
+
+double payload(std::uint32_t id) { return 0.5 * id + 1.0; }
+
+// A jittered lattice with varying support radii, all on rank 0 (as a body is read), nothing elsewhere.
+ParticleSet body_on_rank_zero() {
+  ParticleSet s(kWidth);
+  if (rank() != 0) return s;
+  std::uint32_t id = 0;
+  for (int i = 0; i < kNx; ++i)
+    for (int j = 0; j < kNy; ++j)
+      for (int k = 0; k < kNz; ++k, ++id) {
+        const double r[kWidth] = {i + jitter(id, 0), j + jitter(id, 1), k + jitter(id, 2), 1.7 + jitter(id, 3),
+                                  payload(id)};
+        s.push_back(id, r);
+      }
+  return s;
+}
+
+ParticleSet gather_all(const ParticleSet& mine) {
+  const int n = ranks();
+  int count = static_cast<int>(mine.size());
+  std::vector<int> counts(n), starts(n), vcounts(n), vstarts(n);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::exclusive_scan(counts.begin(), counts.end(), starts.begin(), 0);
+  for (int r = 0; r < n; ++r) {
+    vcounts[r] = counts[r] * mine.width;
+    vstarts[r] = starts[r] * mine.width;
+  }
+  ParticleSet all(mine.width);
+  const int total = starts.back() + counts.back();
+  all.id.resize(total);
+  all.values.resize(static_cast<std::size_t>(total) * mine.width);
+  MPI_Allgatherv(mine.id.data(), count, MPI_UINT32_T, all.id.data(), counts.data(), starts.data(), MPI_UINT32_T,
+                 MPI_COMM_WORLD);
+  MPI_Allgatherv(mine.values.data(), count * mine.width, MPI_DOUBLE, all.values.data(), vcounts.data(),
+                 vstarts.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+  all.sort_by_id();
+  return all;
+}
+
+constexpr double kLargestSupport = 1.9;  // 1.7 + the jitter's bound
+
+double reach_of(const double* record) { return record[3] + kLargestSupport + 2.0 * kSkin; }  // two rows deep
+
+std::vector<double> reach_of(const ParticleSet& owned) {
+  std::vector<double> reach(owned.size());
+  for (std::size_t i = 0; i < owned.size(); ++i) reach[i] = reach_of(owned.at(i));
+  return reach;
+}
+
+// Every id once over the ranks, each rank's ids ascending, and the values still those of the id.
+void expect_owned_once(const ParticleSet& owned, std::size_t total) {
+  EXPECT_TRUE(std::is_sorted(owned.id.begin(), owned.id.end()));
+  const ParticleSet all = gather_all(owned);
+  ASSERT_EQ(all.size(), total);
+  for (std::size_t i = 0; i < total; ++i) ASSERT_EQ(all.id[i], i);
+  for (std::size_t i = 0; i < owned.size(); ++i) EXPECT_EQ(owned.at(i)[4], payload(owned.id[i]));
+}
+
+void expect_in_own_region(const ParticlePartition& partition, const ParticleSet& owned) {
+  std::size_t outside = 0;
+  for (std::size_t i = 0; i < owned.size(); ++i) outside += partition.rank_of(owned.at(i)) == partition.rank() ? 0 : 1;
+  EXPECT_EQ(outside, 0u);
+}
+
+// Every particle of the whole body within reach_j of an owned particle is owned here or a ghost with
+// the owner's values; no ghost is also owned.
+void expect_halo_complete(const ParticleSet& owned, const Halo& halo) {
+  const ParticleSet all = gather_all(owned);
+  const ParticleSet& ghosts = halo.ghosts();
+  EXPECT_TRUE(std::is_sorted(ghosts.id.begin(), ghosts.id.end()));
+  EXPECT_TRUE(std::adjacent_find(ghosts.id.begin(), ghosts.id.end()) == ghosts.id.end());
+  std::vector<std::uint8_t> here(all.size(), 0);
+  for (std::uint32_t id : owned.id) here[id] = 1;
+  for (std::size_t g = 0; g < ghosts.size(); ++g) {
+    EXPECT_EQ(here[ghosts.id[g]], 0) << "ghost " << ghosts.id[g] << " is owned here";
+    here[ghosts.id[g]] = 2;
+    for (int d = 0; d < kWidth; ++d) EXPECT_EQ(ghosts.at(g)[d], all.at(ghosts.id[g])[d]);
+  }
+  std::size_t missing = 0;
+  for (std::size_t i = 0; i < owned.size(); ++i) {
+    const double* xi = owned.at(i);
+    for (std::size_t j = 0; j < all.size(); ++j) {
+      const double* xj = all.at(j);
+      const double reach = reach_of(xj);
+      const double d2 = (xi[0] - xj[0]) * (xi[0] - xj[0]) + (xi[1] - xj[1]) * (xi[1] - xj[1]) +
+                        (xi[2] - xj[2]) * (xi[2] - xj[2]);
+      if (d2 < reach * reach && here[j] == 0) ++missing;
+    }
+  }
+  EXPECT_EQ(missing, 0u);
+}
+
+TEST(MacroDistributed, RcbOwnsEveryParticleOnceEvenlyAndInItsRegion) {
+  ParticleSet owned = body_on_rank_zero();
+  ParticlePartition partition(MPI_COMM_WORLD);
+  partition.balance(owned);
+  expect_owned_once(owned, kNx * kNy * kNz);
+  EXPECT_LE(partition.imbalance(owned), 1.02);
+  expect_in_own_region(partition, owned);
+}
+
+TEST(MacroDistributed, TheSameBodyGivesTheSamePartition) {
+  ParticleSet a = body_on_rank_zero(), b = body_on_rank_zero();
+  ParticlePartition first(MPI_COMM_WORLD), second(MPI_COMM_WORLD);
+  first.balance(a);
+  second.balance(b);
+  EXPECT_EQ(a.id, b.id);
+  EXPECT_EQ(a.values, b.values);
+}
+
+TEST(MacroDistributed, TheHaloHoldsEveryParticleTwoRowsDeepAndNoMore) {
+  ParticleSet owned = body_on_rank_zero();
+  ParticlePartition partition(MPI_COMM_WORLD);
+  partition.balance(owned);
+  Halo halo(partition, owned, reach_of(owned));
+  expect_halo_complete(owned, halo);
+  // Not everything everywhere: a rank holds only the band along its cuts.
+  const long long mine = static_cast<long long>(owned.size() + halo.ghosts().size());
+  long long most = 0;
+  MPI_Allreduce(&mine, &most, 1, MPI_LONG_LONG, MPI_MAX, MPI_COMM_WORLD);
+  if (ranks() >= 3) {
+    EXPECT_LT(most, kNx * kNy * kNz);
+  }
+  if (ranks() == 1) {
+    EXPECT_EQ(halo.ghosts().size(), 0u);
+  }
+}
+
+TEST(MacroDistributed, RefreshBringsTheOwnersNewValues) {
+  ParticleSet owned = body_on_rank_zero();
+  ParticlePartition partition(MPI_COMM_WORLD);
+  partition.balance(owned);
+  Halo halo(partition, owned, reach_of(owned));
+  for (std::size_t i = 0; i < owned.size(); ++i) owned.at(i)[4] = -3.0 * owned.id[i];
+  halo.refresh(owned);
+  const ParticleSet& ghosts = halo.ghosts();
+  for (std::size_t g = 0; g < ghosts.size(); ++g) EXPECT_EQ(ghosts.at(g)[4], -3.0 * ghosts.id[g]);
+}
+
+TEST(MacroDistributed, MovedParticlesGoToTheirRegionsRankAndTheHaloFollows) {
+  ParticleSet owned = body_on_rank_zero();
+  ParticlePartition partition(MPI_COMM_WORLD);
+  partition.balance(owned);
+  // A shear and a translation along the long axis: particles cross the cuts, which stay.
+  for (std::size_t i = 0; i < owned.size(); ++i) owned.at(i)[0] += 2.5 + 0.4 * owned.at(i)[2];
+  partition.migrate(owned);
+  expect_owned_once(owned, kNx * kNy * kNz);
+  expect_in_own_region(partition, owned);
+  Halo halo(partition, owned, reach_of(owned));
+  expect_halo_complete(owned, halo);
+  EXPECT_EQ(partition.balances(), 1u);
+}
+
+TEST(MacroDistributed, ACrowdedPartitionIsBalancedAgainPastTheThreshold) {
+  ParticleSet owned = body_on_rank_zero();
+  ParticlePartition partition(MPI_COMM_WORLD);
+  partition.balance(owned);
+  // The far half of the bar pushed into the near quarter: the near ranks crowd.
+  for (std::size_t i = 0; i < owned.size(); ++i) owned.at(i)[0] *= 0.25;
+  const bool balanced = partition.rebalance_if_needed(owned);
+  EXPECT_EQ(balanced, ranks() > 1);
+  EXPECT_EQ(partition.balances(), ranks() > 1 ? 2u : 1u);
+  EXPECT_LE(partition.imbalance(owned), 1.02);
+  expect_owned_once(owned, kNx * kNy * kNz);
+  expect_in_own_region(partition, owned);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  MpiSession mpi(&argc, &argv);
+  // Failures print on the rank that saw them; every rank exits with the worst result.
+  const int mine = RUN_ALL_TESTS();
+  int worst = 0;
+  MPI_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return worst;
+}
