@@ -1,13 +1,12 @@
 #pragma once
-// A rank's ghosts: copies of the particles of other ranks that its particles' rows may read. Particle
-// j is sent to every other rank whose region meets the cube of half-width reach[j] about x_j, so any
-// particle within reach[j] of a point of that region arrives there (a superset: the cube holds the
-// ball). With reach_j = a_j + a_max + 2 s (support radii a, the largest a_max, the Verlet skin s) a rank
-// holds every candidate node of every row that touches one of its particles: row L touches owned J when
-// |x_L - x_J| < a_J, and L's candidates K lie within a_K + 2 s of x_L. So it builds each of those rows
-// itself, in the serial code's order, instead of adding other ranks' partial sums, and its particles'
-// forces are the serial ones bit for bit (verification.MacroDistributedRows; docs/cluster.md). The
-// owners' regions must be the partition's current ones (migrate first).
+// A rank's ghosts: copies of the particles of other ranks that its rows may read. Particle K goes to
+// every other rank holding a particle J with |x_K - x_J| < node_reach_K + row_reach_J, judged from
+// that rank's ReachMap (a superset). For owner computes (each rank builds every row that touches one
+// of its particles itself, in the serial code's order, instead of adding other ranks' partial sums):
+//   node_reach_K = a_K + 2 s,   row_reach_J = a_J
+// (support radii a, s the Verlet skin): row L touches J when |x_L - x_J| < a_J and L's candidate nodes
+// K lie within a_K + 2 s of x_L. The rank's particles' forces are then the serial ones bit for bit
+// (verification.MacroDistributedRows; docs/cluster.md).
 #include <memory>
 #include <vector>
 
@@ -19,8 +18,10 @@ namespace uhpc::macro::distributed {
 
 class Halo {
  public:
-  // Collective. reach: one a particle of `owned`, in its order.
-  Halo(const ParticlePartition& partition, const ParticleSet& owned, const std::vector<double>& reach);
+  // Collective. node_reach, row_reach: one a particle of `owned`, in its order; cell: the side of the
+  // reach maps' cells (about the largest support radius).
+  Halo(const ParticlePartition& partition, const ParticleSet& owned, const std::vector<double>& node_reach,
+       const std::vector<double>& row_reach, double cell);
   // The ghosts' ids and values (sorted by id); none of them is owned here.
   const ParticleSet& ghosts() const { return ghosts_; }
   // The owners' current values into the ghosts (the same particles, e.g. each step). Collective.

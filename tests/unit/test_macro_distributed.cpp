@@ -81,14 +81,14 @@ ParticleSet gather_all(const ParticleSet& mine) {
   return all;
 }
 
-constexpr double kLargestSupport = 1.9;  // 1.7 + the jitter's bound
-
-double reach_of(const double* record) { return record[3] + kLargestSupport + 2.0 * kSkin; }  // two rows deep
-
-std::vector<double> reach_of(const ParticleSet& owned) {
-  std::vector<double> reach(owned.size());
-  for (std::size_t i = 0; i < owned.size(); ++i) reach[i] = reach_of(owned.at(i));
-  return reach;
+// Owner computes (halo.hpp): K is needed where |x_K - x_J| < a_K + 2 s + a_J for an owned J.
+Halo two_row_halo(const ParticlePartition& partition, const ParticleSet& owned) {
+  std::vector<double> node_reach(owned.size()), row_reach(owned.size());
+  for (std::size_t i = 0; i < owned.size(); ++i) {
+    node_reach[i] = owned.at(i)[3] + 2.0 * kSkin;
+    row_reach[i] = owned.at(i)[3];
+  }
+  return Halo(partition, owned, node_reach, row_reach, 2.0);
 }
 
 // Every id once over the ranks, each rank's ids ascending, and the values still those of the id.
@@ -125,7 +125,7 @@ void expect_halo_complete(const ParticleSet& owned, const Halo& halo) {
     const double* xi = owned.at(i);
     for (std::size_t j = 0; j < all.size(); ++j) {
       const double* xj = all.at(j);
-      const double reach = reach_of(xj);
+      const double reach = xj[3] + 2.0 * kSkin + xi[3];
       const double d2 = (xi[0] - xj[0]) * (xi[0] - xj[0]) + (xi[1] - xj[1]) * (xi[1] - xj[1]) +
                         (xi[2] - xj[2]) * (xi[2] - xj[2]);
       if (d2 < reach * reach && here[j] == 0) ++missing;
@@ -156,7 +156,7 @@ TEST(MacroDistributed, TheHaloHoldsEveryParticleTwoRowsDeepAndNoMore) {
   ParticleSet owned = body_on_rank_zero();
   ParticlePartition partition(MPI_COMM_WORLD);
   partition.balance(owned);
-  Halo halo(partition, owned, reach_of(owned));
+  const Halo halo = two_row_halo(partition, owned);
   expect_halo_complete(owned, halo);
   // Not everything everywhere: a rank holds only the band along its cuts.
   const long long mine = static_cast<long long>(owned.size() + halo.ghosts().size());
@@ -174,7 +174,7 @@ TEST(MacroDistributed, RefreshBringsTheOwnersNewValues) {
   ParticleSet owned = body_on_rank_zero();
   ParticlePartition partition(MPI_COMM_WORLD);
   partition.balance(owned);
-  Halo halo(partition, owned, reach_of(owned));
+  Halo halo = two_row_halo(partition, owned);
   for (std::size_t i = 0; i < owned.size(); ++i) owned.at(i)[4] = -3.0 * owned.id[i];
   halo.refresh(owned);
   const ParticleSet& ghosts = halo.ghosts();
@@ -190,7 +190,7 @@ TEST(MacroDistributed, MovedParticlesGoToTheirRegionsRankAndTheHaloFollows) {
   partition.migrate(owned);
   expect_owned_once(owned, kNx * kNy * kNz);
   expect_in_own_region(partition, owned);
-  Halo halo(partition, owned, reach_of(owned));
+  const Halo halo = two_row_halo(partition, owned);
   expect_halo_complete(owned, halo);
   EXPECT_EQ(partition.balances(), 1u);
 }

@@ -1,8 +1,8 @@
 // The distributed solver's plan checked on the real RK rows and internal force (macro/distributed/,
-// docs/architecture.md section 5): each rank holds its particles and a halo of reach a_j + a_max + 2 s
-// (s the Verlet skin), builds every row over that set itself in ascending global ids, and then the
+// docs/cluster.md): each rank holds its particles and a halo of every particle K within a_K + 2 s + a_J
+// of one of them, J (s the Verlet skin), builds every row over that set itself in ascending global ids, and then the
 // internal force (nodal integration plus NSNI) on each of its particles equals the one-process force
-// bit for bit, at any number of ranks. One row deep (reach a_j + s) is not enough: rows of ghosts that
+// bit for bit, at any number of ranks. One row deep (reach a_K + s) is not enough: rows of ghosts that
 // reach into the rank then miss nodes. Run by ctest under mpirun at 1-4 ranks, one thread a rank (the
 // serial reference is itself one thread: the disc is below the solver's OpenMP threshold).
 #include <gtest/gtest.h>
@@ -130,15 +130,16 @@ TEST(MacroDistributedRows, TwoRowsOfHaloGiveTheSerialForceBitForBitOneRowDoesNot
   ParticlePartition partition(MPI_COMM_WORLD);
   partition.balance(owned);
 
-  const double a_max = *std::max_element(body.p.support.begin(), body.p.support.end());
   const double a_min = *std::min_element(body.p.support.begin(), body.p.support.end());
   const double skin = 0.2 * a_min;  // the solver's default neighbour_skin
-  std::vector<double> two_rows(owned.size()), one_row(owned.size());
+  const double a_max = *std::max_element(body.p.support.begin(), body.p.support.end());
+  std::vector<double> two_rows(owned.size()), one_row(owned.size()), row_reach(owned.size()), none(owned.size(), 0.0);
   for (std::size_t i = 0; i < owned.size(); ++i) {
-    two_rows[i] = owned.at(i)[3] + a_max + 2.0 * skin;
+    two_rows[i] = owned.at(i)[3] + 2.0 * skin;
     one_row[i] = owned.at(i)[3] + skin;
+    row_reach[i] = owned.at(i)[3];
   }
-  const Halo deep(partition, owned, two_rows), shallow(partition, owned, one_row);
+  const Halo deep(partition, owned, two_rows, row_reach, a_max), shallow(partition, owned, one_row, none, a_max);
   const unsigned long long counts[3] = {owned_force_mismatches(owned, deep.ghosts(), serial),
                                         owned_force_mismatches(owned, shallow.ghosts(), serial), owned.size()};
   unsigned long long total[3] = {0, 0, 0};

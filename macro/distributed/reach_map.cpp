@@ -1,0 +1,86 @@
+#include "distributed/reach_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace uhpc::macro::distributed {
+
+ReachMap::ReachMap(const double* x, const double* reach, std::size_t n, double cell) : cell_(cell) {
+  if (!(cell > 0.0) || !std::isfinite(cell)) throw std::invalid_argument("ReachMap: the cell size must be finite and > 0");
+  if (n == 0) return;
+  double hi[3];
+  for (int d = 0; d < 3; ++d) origin_[d] = hi[d] = x[d];
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      origin_[d] = std::min(origin_[d], x[3 * i + d]);
+      hi[d] = std::max(hi[d], x[3 * i + d]);
+    }
+  for (int d = 0; d < 3; ++d) dims_[d] = static_cast<int>(std::floor((hi[d] - origin_[d]) / cell_)) + 1;
+  largest_.assign(static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2], -1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    int c[3];
+    for (int d = 0; d < 3; ++d)
+      c[d] = std::min(dims_[d] - 1, static_cast<int>(std::floor((x[3 * i + d] - origin_[d]) / cell_)));
+    double& r = largest_[(static_cast<std::size_t>(c[2]) * dims_[1] + c[1]) * dims_[0] + c[0]];
+    r = std::max(r, reach[i]);
+    widest_ = std::max(widest_, reach[i]);
+  }
+}
+
+bool ReachMap::needs(const double* x, double own_reach) const {
+  if (largest_.empty()) return false;
+  // Only cells within own_reach + the widest reach can qualify.
+  const double r = own_reach + widest_;
+  int lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::max(0, static_cast<int>(std::floor((x[d] - r - origin_[d]) / cell_)));
+    hi[d] = std::min(dims_[d] - 1, static_cast<int>(std::floor((x[d] + r - origin_[d]) / cell_)));
+    if (lo[d] > hi[d]) return false;
+  }
+  for (int k = lo[2]; k <= hi[2]; ++k)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        const double reach = cell_reach(i, j, k);
+        if (reach < 0.0) continue;
+        const int c[3] = {i, j, k};
+        double d2 = 0.0;
+        for (int d = 0; d < 3; ++d) {
+          const double a = origin_[d] + c[d] * cell_, b = a + cell_;
+          const double out = std::max({a - x[d], 0.0, x[d] - b});
+          d2 += out * out;
+        }
+        const double limit = own_reach + reach;
+        if (d2 < limit * limit) return true;
+      }
+  return false;
+}
+
+std::vector<ReachMap> ReachMap::gather(const ReachMap& mine, MPI_Comm comm) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  // Header: origin (3), cell, widest, dims (3, as doubles); then the cells.
+  std::vector<double> packed = {mine.origin_[0], mine.origin_[1], mine.origin_[2], mine.cell_, mine.widest_,
+                                double(mine.dims_[0]), double(mine.dims_[1]), double(mine.dims_[2])};
+  packed.insert(packed.end(), mine.largest_.begin(), mine.largest_.end());
+  int count = static_cast<int>(packed.size());
+  std::vector<int> counts(static_cast<std::size_t>(size)), starts(static_cast<std::size_t>(size), 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < size; ++r) starts[r] = starts[r - 1] + counts[r - 1];
+  std::vector<double> all(static_cast<std::size_t>(starts.back() + counts.back()));
+  MPI_Allgatherv(packed.data(), count, MPI_DOUBLE, all.data(), counts.data(), starts.data(), MPI_DOUBLE, comm);
+  std::vector<ReachMap> maps(static_cast<std::size_t>(size));
+  for (int r = 0; r < size; ++r) {
+    const double* p = all.data() + starts[r];
+    ReachMap& m = maps[static_cast<std::size_t>(r)];
+    for (int d = 0; d < 3; ++d) m.origin_[d] = p[d];
+    m.cell_ = p[3];
+    m.widest_ = p[4];
+    for (int d = 0; d < 3; ++d) m.dims_[d] = static_cast<int>(p[5 + d]);
+    m.largest_.assign(p + 8, p + counts[r]);
+  }
+  return maps;
+}
+
+}  // namespace uhpc::macro::distributed
