@@ -32,7 +32,7 @@ if ! command -v "$lmp" >/dev/null 2>&1; then
   exit 2
 fi
 if ! command -v "$mpirun" >/dev/null 2>&1; then
-  echo "bench_lammps: '$mpirun' is not on PATH (Open MPI, for the 2-process run); install it with: bash pipelines/install-deps.sh --with-lammps" >&2
+  echo "bench_lammps: '$mpirun' is not on PATH (Open MPI, for the 2-process run); install it with: bash pipelines/install-deps.sh" >&2
   exit 2
 fi
 if [ ! -r "$deck" ]; then

@@ -48,19 +48,21 @@ int main(int argc, char** argv) {
   }
   try {
     const CaseSettings s = read_case(uhpc::Config::load(argv[1], std::vector<std::string>(argv + 2, argv + argc)));
-    // Every rank reads the case; rank 0 alone makes the body, as a run would.
+    // Every rank reads the case; rank 0 alone makes the body, as a run would, and tells the others its
+    // smallest and largest support radius.
     ParticleSet owned(4);  // x, support radius
-    double a_min = 0.0, a_max = 0.0;
-    {
+    double radii[2] = {0.0, 0.0};
+    if (mpi.rank() == 0) {
       const Particles p = Particles::from_body(make_target_body(s.target), 2400.0, s.solver.support_factor);
-      a_min = *std::min_element(p.support.begin(), p.support.end());
-      a_max = *std::max_element(p.support.begin(), p.support.end());
-      if (mpi.rank() == 0)
-        for (std::size_t i = 0; i < p.n; ++i) {
-          const double r[4] = {p.x[3 * i], p.x[3 * i + 1], p.x[3 * i + 2], p.support[i]};
-          owned.push_back(static_cast<std::uint32_t>(i), r);
-        }
+      radii[0] = *std::min_element(p.support.begin(), p.support.end());
+      radii[1] = *std::max_element(p.support.begin(), p.support.end());
+      for (std::size_t i = 0; i < p.n; ++i) {
+        const double r[4] = {p.x[3 * i], p.x[3 * i + 1], p.x[3 * i + 2], p.support[i]};
+        owned.push_back(static_cast<std::uint32_t>(i), r);
+      }
     }
+    MPI_Bcast(radii, 2, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    const double a_min = radii[0], a_max = radii[1];
     const double skin = s.solver.neighbour_skin * a_min;
     MPI_Barrier(MPI_COMM_WORLD);
     auto t0 = std::chrono::steady_clock::now();

@@ -6,7 +6,10 @@
 //   node_reach_K = a_K + 2 s,   row_reach_J = a_J
 // (support radii a, s the Verlet skin): row L touches J when |x_L - x_J| < a_J and L's candidate nodes
 // K lie within a_K + 2 s of x_L. The rank's particles' forces are then the serial ones bit for bit
-// (verification.MacroDistributedRows; docs/cluster.md).
+// (one thread a rank: verification.MacroDistributedRows; docs/cluster.md). The maps are made from where
+// the particles are, so the halo does not depend on the partition's cuts (a rank's particles may have
+// left its region since the last migrate). Each particle asks every rank's map: its grid clips the
+// search to nothing for a rank far away.
 #include <memory>
 #include <vector>
 

@@ -40,9 +40,10 @@ struct ZoltanCallbacks {
   }
 };
 
-ParticlePartition::ParticlePartition(MPI_Comm comm, PartitionOptions options) : comm_(comm), options_(options) {
+ParticlePartition::ParticlePartition(MPI_Comm comm, PartitionOptions options) : options_(options) {
   if (!(options_.balance_tolerance >= 1.0) || !(options_.rebalance_threshold >= options_.balance_tolerance))
     throw std::invalid_argument("ParticlePartition: need 1 <= balance_tolerance <= rebalance_threshold");
+  MPI_Comm_dup(comm, &comm_);
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
   float version = 0.0f;
@@ -50,20 +51,23 @@ ParticlePartition::ParticlePartition(MPI_Comm comm, PartitionOptions options) : 
   zz_ = Zoltan_Create(comm_);
   if (!zz_) throw std::runtime_error("Zoltan_Create failed");
   const std::string tolerance = std::to_string(options_.balance_tolerance);
-  const char* params[][2] = {{"LB_METHOD", "RCB"},      {"KEEP_CUTS", "1"},         {"RCB_REUSE", "1"},
-                             {"AVERAGE_CUTS", "1"},     {"NUM_GID_ENTRIES", "1"},   {"NUM_LID_ENTRIES", "1"},
-                             {"OBJ_WEIGHT_DIM", "0"},   {"RETURN_LISTS", "PARTS"},  {"DEBUG_LEVEL", "0"},
+  // DEBUG_LEVEL first: set later, Zoltan has already announced the method. No lists: the owners come
+  // from the cuts (balance).
+  const char* params[][2] = {{"DEBUG_LEVEL", "0"},     {"LB_METHOD", "RCB"},       {"KEEP_CUTS", "1"},
+                             {"RCB_REUSE", "1"},       {"AVERAGE_CUTS", "1"},      {"NUM_GID_ENTRIES", "1"},
+                             {"NUM_LID_ENTRIES", "1"}, {"OBJ_WEIGHT_DIM", "0"},    {"RETURN_LISTS", "NONE"},
                              {"RCB_OUTPUT_LEVEL", "0"}, {"IMBALANCE_TOL", tolerance.c_str()}};
   for (const auto& p : params) check_zoltan(Zoltan_Set_Param(zz_, p[0], p[1]), p[0]);
   Zoltan_Set_Num_Obj_Fn(zz_, &ZoltanCallbacks::count, this);
   Zoltan_Set_Obj_List_Fn(zz_, &ZoltanCallbacks::list, this);
   Zoltan_Set_Num_Geom_Fn(zz_, &ZoltanCallbacks::dimension, this);
   Zoltan_Set_Geom_Multi_Fn(zz_, &ZoltanCallbacks::positions, this);
-  procs_.resize(static_cast<std::size_t>(size_));
-  parts_.resize(static_cast<std::size_t>(size_));
 }
 
-ParticlePartition::~ParticlePartition() { Zoltan_Destroy(&zz_); }
+ParticlePartition::~ParticlePartition() {
+  Zoltan_Destroy(&zz_);
+  MPI_Comm_free(&comm_);
+}
 
 void ParticlePartition::balance(ParticleSet& owned) {
   current_ = &owned;
@@ -74,14 +78,13 @@ void ParticlePartition::balance(ParticleSet& owned) {
                                        &import_lids, &import_procs, &import_parts, &n_export, &export_gids,
                                        &export_lids, &export_procs, &export_parts);
   current_ = nullptr;
-  check_zoltan(code, "Zoltan_LB_Partition");
-  // RETURN_LISTS PARTS: the "export" lists name every owned particle's new part (= rank).
-  std::vector<int> owner(owned.size(), rank_);
-  for (int k = 0; k < n_export; ++k) owner[export_lids[k]] = export_procs[k];
   Zoltan_LB_Free_Part(&import_gids, &import_lids, &import_procs, &import_parts);
   Zoltan_LB_Free_Part(&export_gids, &export_lids, &export_procs, &export_parts);
+  check_zoltan(code, "Zoltan_LB_Partition");
   ++balances_;
-  send_to_owners(owned, owner);
+  // Owners by region: Zoltan's lists may put particles that lie on a cut on either side of it, while
+  // rank_of, which migrate and every later question use, puts them on one.
+  migrate(owned);
 }
 
 void ParticlePartition::migrate(ParticleSet& owned) {
@@ -118,15 +121,6 @@ int ParticlePartition::rank_of(const double x[3]) const {
   int proc = -1, part = -1;
   check_zoltan(Zoltan_LB_Point_PP_Assign(zz_, const_cast<double*>(x), &proc, &part), "Zoltan_LB_Point_PP_Assign");
   return proc;
-}
-
-void ParticlePartition::ranks_meeting(const double lo[3], const double hi[3], std::vector<int>& ranks) const {
-  int n_procs = 0, n_parts = 0;
-  check_zoltan(Zoltan_LB_Box_PP_Assign(zz_, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], procs_.data(), &n_procs,
-                                parts_.data(), &n_parts),
-        "Zoltan_LB_Box_PP_Assign");
-  ranks.assign(procs_.begin(), procs_.begin() + n_procs);
-  std::sort(ranks.begin(), ranks.end());
 }
 
 }  // namespace uhpc::macro::distributed

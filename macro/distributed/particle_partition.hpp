@@ -4,8 +4,8 @@
 // that any point or box can be asked for its rank(s). Between balances the cuts stand still and a
 // particle that leaves its region moves to the region's rank (migrate); a new balance is made only
 // when the ranks' counts drift apart by more than a threshold (rebalance_if_needed). Every call that
-// changes the owners is collective.
-#include <cstdint>
+// changes the owners is collective. The partition talks on its own duplicate of the communicator, so
+// its messages never meet the caller's.
 #include <vector>
 
 #include <mpi.h>
@@ -31,7 +31,8 @@ class ParticlePartition {
   ParticlePartition(const ParticlePartition&) = delete;
   ParticlePartition& operator=(const ParticlePartition&) = delete;
 
-  // New cuts from the owned particles' positions; every particle goes to its region's rank.
+  // New cuts from the owned particles' positions; every particle goes to its region's rank (a particle
+  // on a cut to the side rank_of gives it, not to whichever side Zoltan's median split it to).
   void balance(ParticleSet& owned);
   // The cuts kept: particles outside their rank's region go to the region's rank. After a balance.
   void migrate(ParticleSet& owned);
@@ -41,8 +42,6 @@ class ParticlePartition {
   bool rebalance_if_needed(ParticleSet& owned);
 
   int rank_of(const double x[3]) const;  // the rank whose region holds x
-  // The ranks whose regions meet the box [lo, hi], ascending.
-  void ranks_meeting(const double lo[3], const double hi[3], std::vector<int>& ranks) const;
   bool balanced() const { return balances_ > 0; }
   std::size_t balances() const { return balances_; }
   int rank() const { return rank_; }
@@ -57,7 +56,6 @@ class ParticlePartition {
   int rank_ = 0, size_ = 1;
   std::size_t balances_ = 0;
   const ParticleSet* current_ = nullptr;  // what Zoltan's callbacks read during balance()
-  mutable std::vector<int> procs_, parts_;
   friend struct ZoltanCallbacks;
 };
 

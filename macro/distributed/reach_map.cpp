@@ -10,14 +10,13 @@ namespace uhpc::macro::distributed {
 ReachMap::ReachMap(const double* x, const double* reach, std::size_t n, double cell) : cell_(cell) {
   if (!(cell > 0.0) || !std::isfinite(cell)) throw std::invalid_argument("ReachMap: the cell size must be finite and > 0");
   if (n == 0) return;
-  double hi[3];
-  for (int d = 0; d < 3; ++d) origin_[d] = hi[d] = x[d];
+  for (int d = 0; d < 3; ++d) origin_[d] = top_[d] = x[d];
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) {
       origin_[d] = std::min(origin_[d], x[3 * i + d]);
-      hi[d] = std::max(hi[d], x[3 * i + d]);
+      top_[d] = std::max(top_[d], x[3 * i + d]);
     }
-  for (int d = 0; d < 3; ++d) dims_[d] = static_cast<int>(std::floor((hi[d] - origin_[d]) / cell_)) + 1;
+  for (int d = 0; d < 3; ++d) dims_[d] = static_cast<int>(std::floor((top_[d] - origin_[d]) / cell_)) + 1;
   largest_.assign(static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2], -1.0);
   for (std::size_t i = 0; i < n; ++i) {
     int c[3];
@@ -31,8 +30,9 @@ ReachMap::ReachMap(const double* x, const double* reach, std::size_t n, double c
 
 bool ReachMap::needs(const double* x, double own_reach) const {
   if (largest_.empty()) return false;
-  // Only cells within own_reach + the widest reach can qualify.
-  const double r = own_reach + widest_;
+  // Only cells within own_reach + the widest reach can qualify (and none when x is farther than that
+  // from the whole grid: the loops below are then empty).
+  const double r = (own_reach + widest_) * (1.0 + 1e-12);
   int lo[3], hi[3];
   for (int d = 0; d < 3; ++d) {
     lo[d] = std::max(0, static_cast<int>(std::floor((x[d] - r - origin_[d]) / cell_)));
@@ -47,11 +47,11 @@ bool ReachMap::needs(const double* x, double own_reach) const {
         const int c[3] = {i, j, k};
         double d2 = 0.0;
         for (int d = 0; d < 3; ++d) {
-          const double a = origin_[d] + c[d] * cell_, b = a + cell_;
+          const double a = origin_[d] + c[d] * cell_, b = std::min(a + cell_, top_[d]);
           const double out = std::max({a - x[d], 0.0, x[d] - b});
           d2 += out * out;
         }
-        const double limit = own_reach + reach;
+        const double limit = (own_reach + reach) * (1.0 + 1e-12);
         if (d2 < limit * limit) return true;
       }
   return false;
@@ -60,9 +60,11 @@ bool ReachMap::needs(const double* x, double own_reach) const {
 std::vector<ReachMap> ReachMap::gather(const ReachMap& mine, MPI_Comm comm) {
   int size = 1;
   MPI_Comm_size(comm, &size);
-  // Header: origin (3), cell, widest, dims (3, as doubles); then the cells.
-  std::vector<double> packed = {mine.origin_[0], mine.origin_[1], mine.origin_[2], mine.cell_, mine.widest_,
-                                double(mine.dims_[0]), double(mine.dims_[1]), double(mine.dims_[2])};
+  // Header: origin (3), top (3), cell, widest, dims (3, as doubles); then the cells.
+  constexpr int kHeader = 11;
+  std::vector<double> packed = {mine.origin_[0], mine.origin_[1], mine.origin_[2], mine.top_[0], mine.top_[1],
+                                mine.top_[2], mine.cell_, mine.widest_, double(mine.dims_[0]), double(mine.dims_[1]),
+                                double(mine.dims_[2])};
   packed.insert(packed.end(), mine.largest_.begin(), mine.largest_.end());
   int count = static_cast<int>(packed.size());
   std::vector<int> counts(static_cast<std::size_t>(size)), starts(static_cast<std::size_t>(size), 0);
@@ -74,11 +76,14 @@ std::vector<ReachMap> ReachMap::gather(const ReachMap& mine, MPI_Comm comm) {
   for (int r = 0; r < size; ++r) {
     const double* p = all.data() + starts[r];
     ReachMap& m = maps[static_cast<std::size_t>(r)];
-    for (int d = 0; d < 3; ++d) m.origin_[d] = p[d];
-    m.cell_ = p[3];
-    m.widest_ = p[4];
-    for (int d = 0; d < 3; ++d) m.dims_[d] = static_cast<int>(p[5 + d]);
-    m.largest_.assign(p + 8, p + counts[r]);
+    for (int d = 0; d < 3; ++d) {
+      m.origin_[d] = p[d];
+      m.top_[d] = p[3 + d];
+      m.dims_[d] = static_cast<int>(p[8 + d]);
+    }
+    m.cell_ = p[6];
+    m.widest_ = p[7];
+    m.largest_.assign(p + kHeader, p + counts[r]);
   }
   return maps;
 }

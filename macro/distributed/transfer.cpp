@@ -27,6 +27,9 @@ Transfer::~Transfer() {
 }
 
 ParticleSet Transfer::carry(const ParticleSet& from) {
+  for (std::uint32_t r : rows_)
+    if (r >= from.size()) throw std::logic_error("Transfer::carry: a row beyond the set");
+  source_size_ = from.size();
   // A record: the id in the first double's bytes, then the values.
   const std::size_t w = static_cast<std::size_t>(from.width) + 1;
   send_.resize(w * rows_.size());
@@ -59,8 +62,8 @@ ParticleSet Transfer::carry(const ParticleSet& from) {
 
 void Transfer::refresh(const ParticleSet& from, ParticleSet& to) const {
   const std::size_t w = static_cast<std::size_t>(from.width);
-  if (to.width != from.width || to.size() != order_.size())
-    throw std::logic_error("Transfer::refresh: not the set this transfer carried");
+  if (from.size() != source_size_ || to.width != from.width || to.size() != order_.size())
+    throw std::logic_error("Transfer::refresh: not the sets this transfer carried");
   send_.resize(w * rows_.size());
   for (std::size_t k = 0; k < rows_.size(); ++k) std::copy(from.at(rows_[k]), from.at(rows_[k]) + w, send_.data() + w * k);
   receive_.resize(w * order_.size());

@@ -24,12 +24,13 @@ class Transfer {
 
   // Ids and values of the rows; returns what this rank received, sorted by id.
   ParticleSet carry(const ParticleSet& from);
-  // The same rows' values again (ids unchanged), into `to` as carry returned it. After carry.
+  // The same rows' values again (ids unchanged), into `to` as carry returned it. After carry, from the
+  // same set (the same ids in the same places; std::logic_error when its size or width changed).
   void refresh(const ParticleSet& from, ParticleSet& to) const;
-  std::size_t received() const { return order_.size(); }
 
  private:
   std::vector<std::uint32_t> rows_;
+  std::size_t source_size_ = 0;  // the size of the set carried from
   Zoltan_Comm_Obj* plan_ = nullptr;
   int received_ = 0;
   std::vector<std::size_t> order_;  // sorted position of the k-th record received
