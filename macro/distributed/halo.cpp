@@ -28,4 +28,23 @@ Halo::Halo(const ParticlePartition& partition, const ParticleSet& owned, const s
   ghosts_ = transfer_->carry(owned);
 }
 
+ParticleSet Halo::local(const ParticleSet& owned, std::vector<std::size_t>* owned_at) const {
+  ParticleSet merged(owned.width);
+  merged.id.reserve(owned.size() + ghosts_.size());
+  merged.values.reserve(owned.values.size() + ghosts_.values.size());
+  if (owned_at) owned_at->clear();
+  std::size_t a = 0, g = 0;
+  while (a < owned.size() || g < ghosts_.size()) {
+    if (g == ghosts_.size() || (a < owned.size() && owned.id[a] < ghosts_.id[g])) {
+      if (owned_at) owned_at->push_back(merged.size());
+      merged.push_back(owned.id[a], owned.at(a));
+      ++a;
+    } else {
+      merged.push_back(ghosts_.id[g], ghosts_.at(g));
+      ++g;
+    }
+  }
+  return merged;
+}
+
 }  // namespace uhpc::macro::distributed

@@ -29,6 +29,9 @@ class Halo {
   const ParticleSet& ghosts() const { return ghosts_; }
   // The owners' current values into the ghosts (the same particles, e.g. each step). Collective.
   void refresh(const ParticleSet& owned) { transfer_->refresh(owned, ghosts_); }
+  // The rank's particles and its ghosts in one set of ascending ids, the order in which the serial code
+  // builds its rows; owned_at (optional) receives where each owned particle went.
+  ParticleSet local(const ParticleSet& owned, std::vector<std::size_t>* owned_at = nullptr) const;
 
  private:
   std::unique_ptr<Transfer> transfer_;

@@ -149,6 +149,13 @@ TEST(MacroDistributed, TheHaloHoldsEveryParticleTwoRowsDeep) {
   partition.balance(owned);
   const Halo halo = two_row_halo(partition, owned);
   expect_halo_complete(owned, halo);
+  // The rank's set for its rows: owned and ghosts in ascending ids, the owned ones where it says.
+  std::vector<std::size_t> owned_at;
+  const ParticleSet local = halo.local(owned, &owned_at);
+  EXPECT_EQ(local.size(), owned.size() + halo.ghosts().size());
+  EXPECT_TRUE(std::is_sorted(local.id.begin(), local.id.end()));
+  ASSERT_EQ(owned_at.size(), owned.size());
+  for (std::size_t k = 0; k < owned.size(); ++k) EXPECT_EQ(local.id[owned_at[k]], owned.id[k]);
   // Not everything everywhere: a rank holds only the band along its cuts.
   const long long mine = static_cast<long long>(owned.size() + halo.ghosts().size());
   long long most = 0;

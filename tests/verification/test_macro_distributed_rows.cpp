@@ -93,20 +93,9 @@ ParticleSet records_on_rank_zero(const Body& b, int rank) {
 
 // The owned particles' forces from rows built over owned + ghosts, in ascending global ids. Returns
 // how many owned particles' forces differ from the serial ones in any bit.
-std::size_t owned_force_mismatches(const ParticleSet& owned, const ParticleSet& ghosts, const std::vector<double>& serial) {
-  ParticleSet local(kWidth);
-  std::size_t a = 0, g = 0;
+std::size_t owned_force_mismatches(const ParticleSet& owned, const Halo& halo, const std::vector<double>& serial) {
   std::vector<std::size_t> owned_at;  // local index of each owned particle
-  while (a < owned.size() || g < ghosts.size()) {
-    if (g == ghosts.size() || (a < owned.size() && owned.id[a] < ghosts.id[g])) {
-      owned_at.push_back(local.size());
-      local.push_back(owned.id[a], owned.at(a));
-      ++a;
-    } else {
-      local.push_back(ghosts.id[g], ghosts.at(g));
-      ++g;
-    }
-  }
+  const ParticleSet local = halo.local(owned, &owned_at);
   const std::size_t n = local.size();
   std::vector<double> x(3 * n), support(n), volume(n), stress(9 * n), stress_grad(27 * n), f(3 * n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -162,8 +151,8 @@ TEST(MacroDistributedRows, TwoRowsOfHaloGiveTheSerialForceBitForBitAfterAMoveOne
   shallow.refresh(owned);
   const std::vector<double> serial = serial_force(body);
 
-  const unsigned long long counts[3] = {owned_force_mismatches(owned, deep.ghosts(), serial),
-                                        owned_force_mismatches(owned, shallow.ghosts(), serial), owned.size()};
+  const unsigned long long counts[3] = {owned_force_mismatches(owned, deep, serial),
+                                        owned_force_mismatches(owned, shallow, serial), owned.size()};
   unsigned long long total[3] = {0, 0, 0};
   MPI_Allreduce(counts, total, 3, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
   if (rank == 0)
