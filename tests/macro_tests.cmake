@@ -47,7 +47,7 @@ add_dependencies(unit_test_macro_checkpoint uhpc-macro)  # the restart test runs
 # started without mpirun (one rank). Open MPI refuses root unless told; CI runs as root, so the tests
 # say so themselves, as Open MPI documents; the machine is not configured for it.
 if(UHPC_MPI)
-  add_executable(unit_test_macro_distributed unit/test_macro_distributed.cpp)
+  add_executable(unit_test_macro_distributed unit/test_macro_distributed.cpp support/mpi_test_main.cpp)
   target_link_libraries(unit_test_macro_distributed PRIVATE uhpc_macro_distributed GTest::gtest uhpc_warnings)
   set(_uhpc_mpi_env "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMP_NUM_THREADS=1"
                     "OMPI_MCA_btl_vader_single_copy_mechanism=none")
@@ -67,10 +67,11 @@ if(UHPC_MPI)
   set_tests_properties(unit.MacroDistributed.without_mpirun PROPERTIES LABELS unit TIMEOUT 180
                        ENVIRONMENT "${_uhpc_mpi_env}")
   # A solver's particles as records: partitioned and gathered back bit for bit, at 1-3 ranks.
-  add_executable(unit_test_macro_distributed_records unit/test_macro_distributed_records.cpp)
+  add_executable(unit_test_macro_distributed_records unit/test_macro_distributed_records.cpp support/mpi_test_main.cpp)
   target_link_libraries(unit_test_macro_distributed_records PRIVATE uhpc_macro_distributed uhpc_macro_app
                         GTest::gtest uhpc_warnings)
   target_compile_definitions(unit_test_macro_distributed_records PRIVATE UHPC_DATA_DIR="${CMAKE_SOURCE_DIR}/data")
+  target_include_directories(unit_test_macro_distributed_records PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/support)
   foreach(np 1 2 3)
     add_test(NAME unit.MacroDistributedRecords.ranks_${np}
              COMMAND ${_uhpc_mpirun} ${np} $<TARGET_FILE:unit_test_macro_distributed_records>)
@@ -78,7 +79,8 @@ if(UHPC_MPI)
                          ENVIRONMENT "${_uhpc_mpi_env}")
   endforeach()
   # The halo's depth on the real rows and internal force: the serial force bit for bit at 1-4 ranks.
-  add_executable(verification_test_macro_distributed_rows verification/test_macro_distributed_rows.cpp)
+  add_executable(verification_test_macro_distributed_rows verification/test_macro_distributed_rows.cpp
+                 support/mpi_test_main.cpp)
   target_link_libraries(verification_test_macro_distributed_rows PRIVATE uhpc_macro_distributed uhpc_macro_solver
                         GTest::gtest uhpc_warnings)
   foreach(np 1 2 3 4)

@@ -27,6 +27,7 @@
 #include "case_config.hpp"
 #include "case_setup.hpp"
 #include "checkpoint.hpp"
+#include "coarse_disc_solver.hpp"
 #include "macro_run.hpp"
 #include "material_factory.hpp"
 #include "test_support.hpp"
@@ -42,22 +43,9 @@ namespace {
 namespace fs = std::filesystem;
 class MacroCheckpoint : public test::ScratchDirTest {};
 
-// The coarse AFC disc with the SDEL: NSNI, lazy shape rows and the Verlet candidates all carry state
-// from step to step, which is what a restart must get right.
-const std::string kCase = std::string(UHPC_DATA_DIR) + "/macro_disc_afc_coarse.json";
-
-ExplicitSolver coarse_disc_solver() {
-  const Config cfg = Config::load(kCase, {});
-  const CaseSettings settings = read_case(cfg);
-  const ParticleBody body = make_target_body(settings.target);
-  MaterialChoice material = make_material(cfg.section("material"), body.size(), std::nullopt);
-  return make_solver(settings, body, std::move(material.set));
-}
-
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
+const std::string& kCase = test::kCoarseDiscCase;
+using test::coarse_disc_solver;
+using test::same_bits;
 
 // Runs uhpc-macro with `args` in a process of its own (fork + exec: OpenMP is not safe across a bare
 // fork; its stdout and stderr go to the test's) and kills it once `ready()` holds, polled (at most 60 s).

@@ -11,7 +11,6 @@
 
 #include "distributed/gather.hpp"
 #include "distributed/halo.hpp"
-#include "distributed/mpi_session.hpp"
 #include "distributed/particle_partition.hpp"
 #include "distributed/particle_set.hpp"
 
@@ -210,16 +209,3 @@ TEST(MacroDistributed, ACrowdedPartitionIsBalancedAgainPastTheThreshold) {
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  // An exception on one rank ends its process (and mpirun the job) instead of leaving the others
-  // waiting in a collective.
-  ::testing::GTEST_FLAG(catch_exceptions) = false;
-  MpiSession mpi(&argc, &argv);
-  // Failures print on the rank that saw them; every rank exits with the worst result.
-  const int mine = RUN_ALL_TESTS();
-  int worst = 0;
-  MPI_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  return worst;
-}

@@ -5,36 +5,21 @@
 // exactly as one resumed from the original.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <numeric>
 #include <vector>
 
-#include "case_config.hpp"
-#include "case_setup.hpp"
+#include "coarse_disc_solver.hpp"
 #include "distributed/gather.hpp"
-#include "distributed/mpi_session.hpp"
 #include "distributed/particle_partition.hpp"
 #include "distributed/particle_records.hpp"
-#include "material_factory.hpp"
-#include "uhpc/config.hpp"
 
 namespace {
 
 using namespace uhpc::macro;
 using namespace uhpc::macro::distributed;
 
-uhpc::macro::ExplicitSolver coarse_disc_solver() {
-  const uhpc::Config cfg = uhpc::Config::load(std::string(UHPC_DATA_DIR) + "/macro_disc_afc_coarse.json", {});
-  const CaseSettings settings = read_case(cfg);
-  const ParticleBody body = make_target_body(settings.target);
-  MaterialChoice material = make_material(cfg.section("material"), body.size(), std::nullopt);
-  return make_solver(settings, body, std::move(material.set));
-}
-
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
+using uhpc::test::coarse_disc_solver;
+using uhpc::test::same_bits;
 
 // c's fields and states of the particles `ids`, as one-particle slices in that order.
 SolverCheckpoint slice(const SolverCheckpoint& c, const RecordLayout& layout, std::size_t n, const std::vector<std::uint32_t>& ids) {
@@ -110,15 +95,3 @@ TEST(MacroDistributedRecords, ASolversParticlesTravelAndComeBackBitForBit) {
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  // An exception on one rank ends its process (and mpirun the job) instead of leaving the others
-  // waiting in a collective.
-  ::testing::GTEST_FLAG(catch_exceptions) = false;
-  MpiSession mpi(&argc, &argv);
-  const int mine = RUN_ALL_TESTS();
-  int worst = 0;
-  MPI_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  return worst;
-}

@@ -18,7 +18,6 @@
 
 #include "bodies/generators.hpp"
 #include "distributed/halo.hpp"
-#include "distributed/mpi_session.hpp"
 #include "distributed/particle_partition.hpp"
 #include "distributed/particle_set.hpp"
 #include "solver/internal_force.hpp"
@@ -166,15 +165,3 @@ TEST(MacroDistributedRows, TwoRowsOfHaloGiveTheSerialForceBitForBitAfterAMoveOne
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  // An exception on one rank ends its process (and mpirun the job) instead of leaving the others
-  // waiting in a collective.
-  ::testing::GTEST_FLAG(catch_exceptions) = false;
-  MpiSession mpi(&argc, &argv);
-  const int mine = RUN_ALL_TESTS();
-  int worst = 0;
-  MPI_Allreduce(&mine, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  return worst;
-}
