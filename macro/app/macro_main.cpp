@@ -8,9 +8,7 @@
 // numerical failure, the last good state in fields.h5 and DIR/diagnostic.json (exit code 1). Bad input:
 // one line naming the file, key and reason, exit code 2. See macro/README.md.
 #include <cmath>
-#include <cstdlib>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -19,19 +17,6 @@
 #include "uhpc/cli.hpp"
 #include "uhpc/errors.hpp"
 #include "uhpc/logging.hpp"
-
-namespace {
-// The number of tasks of the parallel launch this process belongs to, and the variable that says so
-// (Open MPI's mpirun, MPICH's and Intel MPI's, PMIx, Slurm's srun); 1 when none.
-std::pair<long, const char*> launched_tasks() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "SLURM_STEP_NUM_TASKS"})
-    if (const char* value = std::getenv(name)) {
-      const long tasks = std::strtol(value, nullptr, 10);
-      if (tasks > 1) return {tasks, name};
-    }
-  return {1, nullptr};
-}
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"3D explicit RKPM penetration run: a rigid sphere into a particle target (result.json, "
@@ -79,16 +64,6 @@ int main(int argc, char** argv) {
     if (out.empty() && !args.inputs_hash) throw CLI::RequiredError("--out");
     uhpc::init_logging("uhpc-macro", args.quiet ? uhpc::Verbosity::Quiet : uhpc::Verbosity::Normal);
     args.out = out;
-    // Every task of `mpirun -np N` or `srun -n N` would run this same shot into the same folder: one
-    // shot is one process until the distributed solver exists (docs/cluster.md). The questions that
-    // run nothing (--inputs-hash, --reuse-check, --restart-check) may be asked from anywhere.
-    const bool runs_a_shot = !args.inputs_hash && !args.reuse_check && !args.restart_check;
-    if (const auto [tasks, variable] = launched_tasks(); runs_a_shot && tasks > 1)
-      throw uhpc::InputError(fmt::format(
-          "uhpc-macro was started as one of {} tasks ({}={}), but it runs a shot as one process (OpenMP), so "
-          "every task would run the same shot into the same --out. Start it once (without mpirun, or with srun -n 1): "
-          "one shot across MPI ranks is not implemented yet (docs/cluster.md)",
-          tasks, variable, tasks));
     if (!(checkpoint_every_min >= 0.0 && std::isfinite(checkpoint_every_min)))
       throw uhpc::InputError(fmt::format("--checkpoint-every-min {}: not a number of minutes >= 0 (0: none)",
                                          checkpoint_every_min));

@@ -46,13 +46,6 @@ uhpc_bad_input_case(NAME macro_unknown_contact_surface
 uhpc_bad_input_case(NAME macro_negative_checkpoint_clock
   STDERR "error: --checkpoint-every-min -1: not a number of minutes >= 0 (0: none)"
   COMMAND ${_macro} ${_macro_case} --checkpoint-every-min -1)
-# Under mpirun or srun with several tasks, every task would run the same shot into the same folder.
-uhpc_bad_input_case(NAME macro_under_mpirun
-  STDERR "error: uhpc-macro was started as one of 4 tasks (OMPI_COMM_WORLD_SIZE=4), but it runs a shot as one process (OpenMP), so every task would run the same shot into the same --out. Start it once (without mpirun, or with srun -n 1): one shot across MPI ranks is not implemented yet (docs/cluster.md)"
-  COMMAND ${CMAKE_COMMAND} -E env OMPI_COMM_WORLD_SIZE=4 ${_macro} ${_macro_case})
-uhpc_bad_input_case(NAME macro_under_srun
-  STDERR "error: uhpc-macro was started as one of 2 tasks (SLURM_STEP_NUM_TASKS=2), but it runs a shot as one process (OpenMP), so every task would run the same shot into the same --out. Start it once (without mpirun, or with srun -n 1): one shot across MPI ranks is not implemented yet (docs/cluster.md)"
-  COMMAND ${CMAKE_COMMAND} -E env SLURM_STEP_NUM_TASKS=2 ${_macro} ${_macro_case})
 uhpc_bad_input_case(NAME macro_missing_out
   STDERR "error: --out is required"
   COMMAND ${_macro} --config data/macro_elastic_block.json)
