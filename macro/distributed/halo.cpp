@@ -29,6 +29,8 @@ Halo::Halo(const ParticlePartition& partition, const ParticleSet& owned, const s
 }
 
 ParticleSet Halo::local(const ParticleSet& owned, std::vector<std::size_t>* owned_at) const {
+  if (owned.width != ghosts_.width || !std::is_sorted(owned.id.begin(), owned.id.end()))
+    throw std::logic_error("Halo::local: the owned set must be the halo's, sorted by id");
   ParticleSet merged(owned.width);
   merged.id.reserve(owned.size() + ghosts_.size());
   merged.values.reserve(owned.values.size() + ghosts_.values.size());

@@ -49,14 +49,19 @@ ParticlePartition::ParticlePartition(MPI_Comm comm, PartitionOptions options) : 
   float version = 0.0f;
   check_zoltan(Zoltan_Initialize(0, nullptr, &version), "Zoltan_Initialize");
   zz_ = Zoltan_Create(comm_);
-  if (!zz_) throw std::runtime_error("Zoltan_Create failed");
+  if (!zz_) {
+    MPI_Comm_free(&comm_);
+    throw std::runtime_error("Zoltan_Create failed");
+  }
   const std::string tolerance = std::to_string(options_.balance_tolerance);
   // DEBUG_LEVEL first: set later, Zoltan has already announced the method. No lists: the owners come
-  // from the cuts (balance).
+  // from the cuts (balance). Rectilinear blocks: particles on a cut all go to one side, where rank_of
+  // puts them, and Zoltan balances with that.
   const char* params[][2] = {{"DEBUG_LEVEL", "0"},     {"LB_METHOD", "RCB"},       {"KEEP_CUTS", "1"},
                              {"RCB_REUSE", "1"},       {"AVERAGE_CUTS", "1"},      {"NUM_GID_ENTRIES", "1"},
                              {"NUM_LID_ENTRIES", "1"}, {"OBJ_WEIGHT_DIM", "0"},    {"RETURN_LISTS", "NONE"},
-                             {"RCB_OUTPUT_LEVEL", "0"}, {"IMBALANCE_TOL", tolerance.c_str()}};
+                             {"RCB_OUTPUT_LEVEL", "0"}, {"IMBALANCE_TOL", tolerance.c_str()},
+                             {"RCB_RECTILINEAR_BLOCKS", "1"}};
   for (const auto& p : params) check_zoltan(Zoltan_Set_Param(zz_, p[0], p[1]), p[0]);
   Zoltan_Set_Num_Obj_Fn(zz_, &ZoltanCallbacks::count, this);
   Zoltan_Set_Obj_List_Fn(zz_, &ZoltanCallbacks::list, this);
@@ -82,9 +87,9 @@ void ParticlePartition::balance(ParticleSet& owned) {
   Zoltan_LB_Free_Part(&export_gids, &export_lids, &export_procs, &export_parts);
   check_zoltan(code, "Zoltan_LB_Partition");
   ++balances_;
-  // Owners by region: Zoltan's lists may put particles that lie on a cut on either side of it, while
-  // rank_of, which migrate and every later question use, puts them on one.
+  // Owners by region: rank_of, which migrate and every later question use.
   migrate(owned);
+  balanced_imbalance_ = imbalance(owned);
 }
 
 void ParticlePartition::migrate(ParticleSet& owned) {
@@ -112,7 +117,10 @@ double ParticlePartition::imbalance(const ParticleSet& owned) const {
 
 bool ParticlePartition::rebalance_if_needed(ParticleSet& owned) {
   migrate(owned);
-  if (imbalance(owned) <= options_.rebalance_threshold) return false;
+  // A body whose planes of particles cannot be split evenly stays above the threshold right after a
+  // balance; only a drift beyond that asks for another.
+  const double now = imbalance(owned);
+  if (now <= options_.rebalance_threshold || now <= balanced_imbalance_) return false;
   balance(owned);
   return true;
 }

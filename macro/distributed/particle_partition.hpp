@@ -38,7 +38,8 @@ class ParticlePartition {
   void migrate(ParticleSet& owned);
   // max / mean over the ranks of the owned counts (1 when the ranks hold equal shares).
   double imbalance(const ParticleSet& owned) const;
-  // migrate, then balance when the imbalance passes the threshold; true when it balanced.
+  // migrate, then balance when the imbalance passes the threshold and what the last balance reached;
+  // true when it balanced.
   bool rebalance_if_needed(ParticleSet& owned);
 
   int rank_of(const double x[3]) const;  // the rank whose region holds x
@@ -55,6 +56,7 @@ class ParticlePartition {
   Zoltan_Struct* zz_ = nullptr;
   int rank_ = 0, size_ = 1;
   std::size_t balances_ = 0;
+  double balanced_imbalance_ = 1.0;  // what the last balance reached
   const ParticleSet* current_ = nullptr;  // what Zoltan's callbacks read during balance()
   friend struct ZoltanCallbacks;
 };

@@ -46,21 +46,23 @@ const std::vector<double>& field(const SolverCheckpoint& c, const std::string& n
 }  // namespace
 
 ParticleSet to_records(const RecordLayout& layout, const SolverCheckpoint& c, const Particles& p,
-                       const std::vector<std::uint32_t>& ids) {
+                       const std::vector<std::uint32_t>& rows, const std::vector<std::uint32_t>& ids) {
+  if (rows.size() != ids.size()) throw std::invalid_argument("to_records: one global id for each row");
   ParticleSet records(layout.width);
   std::vector<double> r(static_cast<std::size_t>(layout.width));
   std::vector<const std::vector<double>*> fields;
   for (const std::string& name : layout.fields) fields.push_back(&field(c, name));
-  for (std::uint32_t i : ids) {
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const std::uint32_t i = rows[k];
     double* out = r.data();
-    for (std::size_t k = 0; k < fields.size(); ++k) {
-      const double* from = fields[k]->data() + static_cast<std::size_t>(layout.widths[k]) * i;
-      out = std::copy(from, from + layout.widths[k], out);
+    for (std::size_t f = 0; f < fields.size(); ++f) {
+      const double* from = fields[f]->data() + static_cast<std::size_t>(layout.widths[f]) * i;
+      out = std::copy(from, from + layout.widths[f], out);
     }
     for (auto constant : kConstants) *out++ = (p.*constant)[i];
     std::fill(out, r.data() + r.size(), 0.0);  // the state's last double may be partly padding
     std::memcpy(out, c.material_states.data() + layout.state_bytes * i, layout.state_bytes);
-    records.push_back(i, r.data());
+    records.push_back(ids[k], r.data());
   }
   return records;
 }
@@ -84,6 +86,8 @@ void from_records(const RecordLayout& layout, const ParticleSet& records, Solver
     for (auto constant : kConstants) (p.*constant)[i] = *in++;
     std::memcpy(c.material_states.data() + layout.state_bytes * i, in, layout.state_bytes);
   }
+  c.state.f_ext_old = field(c, "f_ext");
+  c.state.f_contact_old = field(c, "f_contact");
 }
 
 }  // namespace uhpc::macro::distributed

@@ -24,11 +24,13 @@ struct RecordLayout {
 // The layout of a checkpoint of n particles (std::invalid_argument when a field or the states do not
 // divide into n, or when there is no "x").
 RecordLayout record_layout(const SolverCheckpoint& c, std::size_t n);
-// Records of the particles whose ids are `ids` (their indices in c and p).
+// Records of the particles at `rows` of c and p, named by their global ids `ids` (one each).
 ParticleSet to_records(const RecordLayout& layout, const SolverCheckpoint& c, const Particles& p,
-                       const std::vector<std::uint32_t>& ids);
-// The records' particles, in the records' order, into c's fields and states and p's constants (both
-// sized here; c's step state and counters are left as they are).
+                       const std::vector<std::uint32_t>& rows, const std::vector<std::uint32_t>& ids);
+// The records' particles, in the records' order, into c's fields and states, the step state's per-
+// particle forces of the last step (f_ext_old, f_contact_old: f_ext and f_contact, as they are after
+// every completed step) and p's constants (p.n and those four fields; p's other fields are not
+// touched). c's other step state and counters are left as they are.
 void from_records(const RecordLayout& layout, const ParticleSet& records, SolverCheckpoint& c, Particles& p);
 
 }  // namespace uhpc::macro::distributed

@@ -10,13 +10,21 @@ namespace uhpc::macro::distributed {
 ReachMap::ReachMap(const double* x, const double* reach, std::size_t n, double cell) : cell_(cell) {
   if (!(cell > 0.0) || !std::isfinite(cell)) throw std::invalid_argument("ReachMap: the cell size must be finite and > 0");
   if (n == 0) return;
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    if (!std::isfinite(x[i])) throw std::invalid_argument("ReachMap: a position that is not finite");
   for (int d = 0; d < 3; ++d) origin_[d] = top_[d] = x[d];
   for (std::size_t i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) {
       origin_[d] = std::min(origin_[d], x[3 * i + d]);
       top_[d] = std::max(top_[d], x[3 * i + d]);
     }
-  for (int d = 0; d < 3; ++d) dims_[d] = static_cast<int>(std::floor((top_[d] - origin_[d]) / cell_)) + 1;
+  double cells = 1.0;
+  for (int d = 0; d < 3; ++d) {
+    const double along = std::floor((top_[d] - origin_[d]) / cell_) + 1.0;
+    cells *= along;
+    if (cells > 1e8) throw std::invalid_argument("ReachMap: more than 1e8 cells (the cell size is far too small)");
+    dims_[d] = static_cast<int>(along);
+  }
   largest_.assign(static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2], -1.0);
   for (std::size_t i = 0; i < n; ++i) {
     int c[3];
@@ -30,14 +38,19 @@ ReachMap::ReachMap(const double* x, const double* reach, std::size_t n, double c
 
 bool ReachMap::needs(const double* x, double own_reach) const {
   if (largest_.empty()) return false;
+  if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]) || !std::isfinite(own_reach))
+    return true;  // nowhere to judge it: every rank gets it (and the step's health check names it)
   // Only cells within own_reach + the widest reach can qualify (and none when x is farther than that
   // from the whole grid: the loops below are then empty).
   const double r = (own_reach + widest_) * (1.0 + 1e-12);
   int lo[3], hi[3];
   for (int d = 0; d < 3; ++d) {
-    lo[d] = std::max(0, static_cast<int>(std::floor((x[d] - r - origin_[d]) / cell_)));
-    hi[d] = std::min(dims_[d] - 1, static_cast<int>(std::floor((x[d] + r - origin_[d]) / cell_)));
-    if (lo[d] > hi[d]) return false;
+    // Clamped in double before the cast: a point far from the grid gives indices far out of int's range.
+    const double last = dims_[d] - 1;
+    const double a = std::floor((x[d] - r - origin_[d]) / cell_), b = std::floor((x[d] + r - origin_[d]) / cell_);
+    if (b < 0.0 || a > last) return false;
+    lo[d] = static_cast<int>(std::max(a, 0.0));
+    hi[d] = static_cast<int>(std::min(b, last));
   }
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)
