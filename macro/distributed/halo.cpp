@@ -9,13 +9,13 @@ namespace uhpc::macro::distributed {
 
 Halo::Halo(const ParticlePartition& partition, const ParticleSet& owned, const std::vector<double>& node_reach,
            const std::vector<double>& row_reach, double cell)
-    : ghosts_(owned.width) {
+    : comm_(partition.comm()), ghosts_(owned.width) {
   if (node_reach.size() != owned.size() || row_reach.size() != owned.size())
     throw std::invalid_argument("Halo: one node reach and one row reach for each owned particle");
   std::vector<double> x(3 * owned.size());
   for (std::size_t i = 0; i < owned.size(); ++i) std::copy(owned.at(i), owned.at(i) + 3, x.data() + 3 * i);
   const std::vector<ReachMap> maps =
-      ReachMap::gather(ReachMap(x.data(), row_reach.data(), owned.size(), cell), partition.comm());
+      ReachMap::gather(ReachMap(x.data(), row_reach.data(), owned.size(), cell), comm_.get());
   std::vector<std::uint32_t> rows;
   std::vector<int> ranks;
   for (std::size_t i = 0; i < owned.size(); ++i)
@@ -24,7 +24,7 @@ Halo::Halo(const ParticlePartition& partition, const ParticleSet& owned, const s
         rows.push_back(static_cast<std::uint32_t>(i));
         ranks.push_back(q);
       }
-  transfer_ = std::make_unique<Transfer>(std::move(rows), std::move(ranks), partition.comm());
+  transfer_ = std::make_unique<Transfer>(std::move(rows), std::move(ranks), comm_.get());
   ghosts_ = transfer_->carry(owned);
 }
 

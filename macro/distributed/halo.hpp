@@ -9,10 +9,12 @@
 // (one thread a rank: verification.MacroDistributedRows; docs/cluster.md). The maps are made from where
 // the particles are, so the halo does not depend on the partition's cuts (a rank's particles may have
 // left its region since the last migrate). Each particle asks every rank's map: its grid clips the
-// search to nothing for a rank far away.
+// search to nothing for a rank far away. A halo talks on its own copy of the communicator, so it may
+// outlive the partition it was made with.
 #include <memory>
 #include <vector>
 
+#include "distributed/mpi_session.hpp"
 #include "distributed/particle_partition.hpp"
 #include "distributed/particle_set.hpp"
 #include "distributed/transfer.hpp"
@@ -34,6 +36,7 @@ class Halo {
   ParticleSet local(const ParticleSet& owned, std::vector<std::size_t>* owned_at = nullptr) const;
 
  private:
+  CommunicatorCopy comm_;  // the transfer's: before it, so it outlives it, and the partition
   std::unique_ptr<Transfer> transfer_;
   ParticleSet ghosts_;
 };

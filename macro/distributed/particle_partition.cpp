@@ -40,19 +40,16 @@ struct ZoltanCallbacks {
   }
 };
 
-ParticlePartition::ParticlePartition(MPI_Comm comm, PartitionOptions options) : options_(options) {
+ParticlePartition::ParticlePartition(MPI_Comm comm, PartitionOptions options)
+    : comm_(comm), options_(options) {
   if (!(options_.balance_tolerance >= 1.0) || !(options_.rebalance_threshold >= options_.balance_tolerance))
     throw std::invalid_argument("ParticlePartition: need 1 <= balance_tolerance <= rebalance_threshold");
-  MPI_Comm_dup(comm, &comm_);
-  MPI_Comm_rank(comm_, &rank_);
-  MPI_Comm_size(comm_, &size_);
+  MPI_Comm_rank(comm_.get(), &rank_);
+  MPI_Comm_size(comm_.get(), &size_);
   float version = 0.0f;
   check_zoltan(Zoltan_Initialize(0, nullptr, &version), "Zoltan_Initialize");
-  zz_ = Zoltan_Create(comm_);
-  if (!zz_) {
-    MPI_Comm_free(&comm_);
-    throw std::runtime_error("Zoltan_Create failed");
-  }
+  zz_ = Zoltan_Create(comm_.get());
+  if (!zz_) throw std::runtime_error("Zoltan_Create failed");
   const std::string tolerance = std::to_string(options_.balance_tolerance);
   // DEBUG_LEVEL first: set later, Zoltan has already announced the method. No lists: the owners come
   // from the cuts (balance). Rectilinear blocks: particles on a cut all go to one side, where rank_of
@@ -69,10 +66,7 @@ ParticlePartition::ParticlePartition(MPI_Comm comm, PartitionOptions options) : 
   Zoltan_Set_Geom_Multi_Fn(zz_, &ZoltanCallbacks::positions, this);
 }
 
-ParticlePartition::~ParticlePartition() {
-  Zoltan_Destroy(&zz_);
-  MPI_Comm_free(&comm_);
-}
+ParticlePartition::~ParticlePartition() { Zoltan_Destroy(&zz_); }
 
 void ParticlePartition::balance(ParticleSet& owned) {
   current_ = &owned;
@@ -96,21 +90,17 @@ void ParticlePartition::migrate(ParticleSet& owned) {
   if (!balanced()) throw std::logic_error("ParticlePartition::migrate: no cuts yet (balance first)");
   std::vector<int> owner(owned.size());
   for (std::size_t i = 0; i < owned.size(); ++i) owner[i] = rank_of(owned.at(i));
-  send_to_owners(owned, owner);
-}
-
-void ParticlePartition::send_to_owners(ParticleSet& owned, const std::vector<int>& owner) {
   std::vector<std::uint32_t> rows(owned.size());
   std::iota(rows.begin(), rows.end(), std::uint32_t{0});
-  Transfer transfer(std::move(rows), owner, comm_);
+  Transfer transfer(std::move(rows), std::move(owner), comm_.get());
   owned = transfer.carry(owned);
 }
 
 double ParticlePartition::imbalance(const ParticleSet& owned) const {
   const long long mine = static_cast<long long>(owned.size());
   long long most = 0, total = 0;
-  MPI_Allreduce(&mine, &most, 1, MPI_LONG_LONG, MPI_MAX, comm_);
-  MPI_Allreduce(&mine, &total, 1, MPI_LONG_LONG, MPI_SUM, comm_);
+  MPI_Allreduce(&mine, &most, 1, MPI_LONG_LONG, MPI_MAX, comm_.get());
+  MPI_Allreduce(&mine, &total, 1, MPI_LONG_LONG, MPI_SUM, comm_.get());
   if (total == 0) return 1.0;
   return static_cast<double>(most) * size_ / static_cast<double>(total);
 }

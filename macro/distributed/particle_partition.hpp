@@ -10,6 +10,7 @@
 
 #include <mpi.h>
 
+#include "distributed/mpi_session.hpp"
 #include "distributed/particle_set.hpp"
 
 struct Zoltan_Struct;
@@ -47,11 +48,10 @@ class ParticlePartition {
   std::size_t balances() const { return balances_; }
   int rank() const { return rank_; }
   int size() const { return size_; }
-  MPI_Comm comm() const { return comm_; }
+  MPI_Comm comm() const { return comm_.get(); }
 
  private:
-  void send_to_owners(ParticleSet& owned, const std::vector<int>& owner);
-  MPI_Comm comm_;
+  CommunicatorCopy comm_;
   PartitionOptions options_;
   Zoltan_Struct* zz_ = nullptr;
   int rank_ = 0, size_ = 1;

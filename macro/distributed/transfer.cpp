@@ -18,16 +18,12 @@ constexpr int kTag = 7301;  // any tag: Zoltan_Comm keeps a plan's messages apar
 
 Transfer::Transfer(std::vector<std::uint32_t> rows, std::vector<int> ranks, MPI_Comm comm) : rows_(std::move(rows)) {
   if (ranks.size() != rows_.size()) throw std::invalid_argument("Transfer: one rank for each row");
-  // Zoltan keeps the communicator's handle in the plan without duplicating it.
-  MPI_Comm_dup(comm, &comm_);
-  const int code = Zoltan_Comm_Create(&plan_, static_cast<int>(ranks.size()), ranks.data(), comm_, kTag, &received_);
-  if (code != ZOLTAN_OK && code != ZOLTAN_WARN) MPI_Comm_free(&comm_);
-  check_zoltan(code, "Zoltan_Comm_Create");
+  check_zoltan(Zoltan_Comm_Create(&plan_, static_cast<int>(ranks.size()), ranks.data(), comm, kTag, &received_),
+               "Zoltan_Comm_Create");
 }
 
 Transfer::~Transfer() {
   if (plan_) Zoltan_Comm_Destroy(&plan_);
-  if (comm_ != MPI_COMM_NULL) MPI_Comm_free(&comm_);
 }
 
 ParticleSet Transfer::carry(const ParticleSet& from) {

@@ -31,7 +31,6 @@ class Transfer {
  private:
   std::vector<std::uint32_t> rows_;
   std::size_t source_size_ = 0;  // the size of the set carried from
-  MPI_Comm comm_ = MPI_COMM_NULL;
   Zoltan_Comm_Obj* plan_ = nullptr;
   int received_ = 0;
   std::vector<std::size_t> order_;  // sorted position of the k-th record received

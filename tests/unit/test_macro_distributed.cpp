@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "distributed/gather.hpp"
@@ -173,11 +174,15 @@ TEST(MacroDistributed, TheHaloHoldsEveryParticleTwoRowsDeep) {
   }
 }
 
-TEST(MacroDistributed, RefreshBringsTheOwnersNewValues) {
+TEST(MacroDistributed, RefreshBringsTheOwnersNewValuesAfterThePartitionIsGone) {
   ParticleSet owned = body_on_rank_zero();
-  ParticlePartition partition(MPI_COMM_WORLD);
-  partition.balance(owned);
-  Halo halo = two_row_halo(partition, owned);
+  std::unique_ptr<Halo> halo_of_a_gone_partition;
+  {
+    ParticlePartition partition(MPI_COMM_WORLD);
+    partition.balance(owned);
+    halo_of_a_gone_partition = std::make_unique<Halo>(two_row_halo(partition, owned));
+  }
+  Halo& halo = *halo_of_a_gone_partition;
   for (std::size_t i = 0; i < owned.size(); ++i) owned.at(i)[4] = -3.0 * owned.id[i];
   halo.refresh(owned);
   const ParticleSet& ghosts = halo.ghosts();
