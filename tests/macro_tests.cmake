@@ -89,4 +89,16 @@ if(UHPC_MPI)
     set_tests_properties(verification.MacroDistributedRows.ranks_${np} PROPERTIES LABELS verification
                          TIMEOUT 300 PROCESSORS ${np} ENVIRONMENT "${_uhpc_mpi_env}")
   endforeach()
+  # The distributed step: a struck disc stepped at 1-4 ranks equals the one-process run bit for bit.
+  add_executable(verification_test_macro_distributed_step verification/test_macro_distributed_step.cpp
+                 support/mpi_test_main.cpp)
+  target_link_libraries(verification_test_macro_distributed_step PRIVATE uhpc_macro_distributed uhpc_macro_app
+                        GTest::gtest uhpc_warnings)
+  target_compile_definitions(verification_test_macro_distributed_step PRIVATE UHPC_DATA_DIR="${CMAKE_SOURCE_DIR}/data")
+  foreach(np 1 2 3 4)
+    add_test(NAME verification.MacroDistributedStep.ranks_${np}
+             COMMAND ${_uhpc_mpirun} ${np} $<TARGET_FILE:verification_test_macro_distributed_step>)
+    set_tests_properties(verification.MacroDistributedStep.ranks_${np} PROPERTIES LABELS verification
+                         TIMEOUT 600 PROCESSORS ${np} ENVIRONMENT "${_uhpc_mpi_env}")
+  endforeach()
 endif()

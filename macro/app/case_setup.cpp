@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 #include <fmt/format.h>
@@ -37,12 +38,14 @@ ParticleBody make_target_body(const TargetSettings& t) {
   return body;
 }
 
-std::vector<std::int32_t> rim_particles(const Particles& p, const CaseSettings& s) {
+std::vector<std::int32_t> rim_particles(const Particles& p, const CaseSettings& s) { return rim_particles(p.x.data(), p.n, s); }
+
+std::vector<std::int32_t> rim_particles(const double* xs, std::size_t n, const CaseSettings& s) {
   std::vector<std::int32_t> out;
   if (s.support.rim == SupportSettings::Rim::Free) return out;
   const double w = s.support.rim_width_m;
-  for (std::size_t i = 0; i < p.n; ++i) {
-    const double x = p.x[3 * i], y = p.x[3 * i + 1];
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = xs[3 * i], y = xs[3 * i + 1];
     bool rim;
     if (s.target.shape == TargetSettings::Shape::Disc) {
       rim = std::hypot(x, y) > s.target.disc.radius_m - w;
@@ -55,13 +58,17 @@ std::vector<std::int32_t> rim_particles(const Particles& p, const CaseSettings& 
 }
 
 std::vector<Wall> frame_walls(const Particles& p, const std::vector<std::int32_t>& band) {
+  return frame_walls(p.x.data(), p.spacing.data(), band);
+}
+
+std::vector<Wall> frame_walls(const double* x, const double* spacing, const std::vector<std::int32_t>& band) {
   // The lips (impact side: the solid is below them) and the plate (exit side: the solid is above it)
   // touch the band's outermost particle surfaces, z -+ h/2, so nothing is pressed at rest.
   double lo = HUGE_VAL, hi = -HUGE_VAL;
   for (const std::int32_t j : band) {
     const std::size_t i = static_cast<std::size_t>(j);
-    lo = std::min(lo, p.x[3 * i + 2] - 0.5 * p.spacing[i]);
-    hi = std::max(hi, p.x[3 * i + 2] + 0.5 * p.spacing[i]);
+    lo = std::min(lo, x[3 * i + 2] - 0.5 * spacing[i]);
+    hi = std::max(hi, x[3 * i + 2] + 0.5 * spacing[i]);
   }
   Wall lips, plate;
   lips.point = {0.0, 0.0, lo};
@@ -88,19 +95,49 @@ RigidSphere make_projectile(const ProjectileSettings& s) {
   return sphere;
 }
 
-ExplicitSolver make_solver(const CaseSettings& s, const ParticleBody& body, MaterialSet material) {
-  const double rho = reference_density(material);
-  ExplicitSolver solver(Particles::from_body(body, rho, s.solver.support_factor), std::move(material), s.solver);
+namespace {
+// The rim support and the projectile of solver, whose particles are some of `whole`'s (all of them for
+// one process): the band is the solver's own particles in it; the frame's walls touch the whole band.
+void set_conditions(ExplicitSolver& solver, const CaseSettings& s, const ParticleBody& whole, bool is_whole) {
   const std::vector<std::int32_t> band = rim_particles(solver.particles(), s);
   if (s.support.rim == SupportSettings::Rim::Fixed) {
     PrescribedVelocity rim;
     rim.particles = band;
     solver.add_prescribed_velocity(rim);
   } else if (s.support.rim == SupportSettings::Rim::Frame) {
-    for (const Wall& w : frame_walls(solver.particles(), band)) solver.add_wall(w);
+    const std::vector<std::int32_t> whole_band = is_whole ? band : rim_particles(whole.position.data(), whole.size(), s);
+    for (Wall w : frame_walls(whole.position.data(), whole.spacing.data(), whole_band)) {
+      w.particles = band;
+      solver.add_wall(w);
+    }
   }
   solver.set_sphere(make_projectile(s.projectile));
+}
+}  // namespace
+
+ExplicitSolver make_solver(const CaseSettings& s, const ParticleBody& body, MaterialSet material) {
+  const double rho = reference_density(material);
+  ExplicitSolver solver(Particles::from_body(body, rho, s.solver.support_factor), std::move(material), s.solver);
+  set_conditions(solver, s, body, true);
   solver.initialize();
+  return solver;
+}
+
+ExplicitSolver make_part_solver(const CaseSettings& s, const ParticleBody& body, const MaterialSet& law,
+                                const std::vector<std::uint32_t>& ids) {
+  ParticleBody part;
+  part.position.reserve(3 * ids.size());
+  part.volume.reserve(ids.size());
+  part.spacing.reserve(ids.size());
+  for (const std::uint32_t id : ids) {
+    if (id >= body.size()) throw std::invalid_argument("make_part_solver: a particle id beyond the body");
+    part.position.insert(part.position.end(), body.position.begin() + 3 * id, body.position.begin() + 3 * id + 3);
+    part.volume.push_back(body.volume[id]);
+    part.spacing.push_back(body.spacing[id]);
+  }
+  ExplicitSolver solver(Particles::from_body(part, reference_density(law), s.solver.support_factor),
+                        same_law(law, ids.size()), s.solver);
+  set_conditions(solver, s, body, false);
   return solver;
 }
 

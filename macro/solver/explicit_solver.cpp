@@ -28,10 +28,11 @@ namespace {
 // With L_start (EndpointAverage) and !start_done, the start-of-step gradients come from the old rows
 // still in place (lazy rows, ShapeCache::prepare): a due row's are read before its rebuild, and a
 // kept row has the same gradients at both ends (its L is already the average).
+// counted (optional): only these particles' shares go into the sums (a distributed run's owned ones).
 template <class Block>
 StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& force, Block& block, Particles& p,
                                           const double* L_start, const double* G_start, bool start_done, double dt,
-                                          const BulkViscosity& viscosity) {
+                                          const BulkViscosity& viscosity, const std::uint8_t* counted) {
   const std::int64_t n = static_cast<std::int64_t>(p.n);
   const bool nsni = shapes.has_second_gradients() && !p.stress_grad.empty();
   double work = 0.0, visc = 0.0, stab = 0.0, dt_min = std::numeric_limits<double>::infinity();
@@ -40,7 +41,7 @@ StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& for
   {
     double* scratch = shapes.thread_scratch();
     double* buf = force.begin(p.n);
-    StressUpdateSums sums;
+    StressUpdateSums sums, ghosts;  // ghosts: a ghost's shares, not counted
 #pragma omp for schedule(static, kRowChunk)
     for (std::int64_t i = 0; i < n; ++i) {
       const double *Ls = nullptr, *Gs = nullptr;
@@ -67,7 +68,7 @@ StressUpdateSums rows_stresses_and_forces(ShapeCache& shapes, InternalForce& for
         if (G && Gs)
           for (int m = 0; m < 27; ++m) G[m] = 0.5 * (Gs[m] + G[m]);
       }
-      update_stress(block, p, i, dt, viscosity, sums);
+      update_stress(block, p, i, dt, viscosity, !counted || counted[i] ? sums : ghosts);
       InternalForce::add_row(shapes, i, p.stress.data(), p.bulk_q.data(), p.volume.data(),
                              nsni ? p.force_stress_grad().data() : nullptr, buf, p.nsni_moment_scale);
     }
@@ -125,7 +126,24 @@ ShapeCache ExplicitSolver::empty_shape_cache() const {
   return cache;
 }
 
+void ExplicitSolver::set_rank_share(RankShare share) {
+  if (initialized_) throw std::logic_error("ExplicitSolver::set_rank_share: call before initialize()");
+  if (share.owned.size() != p_.n || share.ids.size() != p_.n)
+    throw std::invalid_argument("ExplicitSolver::set_rank_share: one owned flag and one id per particle are required");
+  if (!share.min || !share.sum || !share.gather)
+    throw std::invalid_argument("ExplicitSolver::set_rank_share: the ranks' min, sum and gather are required");
+  if (st_.sphere && st_.sphere->contact.model == SphereContactModel::Penalty)
+    throw std::invalid_argument("ExplicitSolver::set_rank_share: the penalty contact is not distributed yet");
+  if (options_.shape_reuse_tolerance > 0)
+    throw std::invalid_argument("ExplicitSolver::set_rank_share: lazy rows (shape_reuse_tolerance > 0) are not distributed yet");
+  if (options_.strain_configuration == StrainConfiguration::Midpoint)
+    throw std::invalid_argument("ExplicitSolver::set_rank_share: the midpoint strain configuration is not distributed yet");
+  share_ = std::move(share);
+}
+
 void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
+  if (share_ && sphere.contact.model == SphereContactModel::Penalty)
+    throw std::invalid_argument("ExplicitSolver::set_sphere: the penalty contact is not distributed yet");
   if (initialized_) throw std::logic_error("ExplicitSolver::set_sphere: call before initialize()");
   sphere.validate();
   st_.sphere = sphere;
@@ -133,6 +151,7 @@ void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
 }
 
 double ExplicitSolver::stable_step(std::initializer_list<double> critical_steps) const {
+  if (share_) return options_.cfl * ranks_min(std::min(critical_steps));
   return options_.cfl * std::min(critical_steps);
 }
 
@@ -161,11 +180,11 @@ void ExplicitSolver::initialize() {
         for (std::size_t i = 0; i < p_.n; ++i) {
           Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p_.stress.data() + 9 * i) = block.state[i].stress;
           p_.wave_speed[i] = block.law.wave_speed(block.state[i], p_.volume0[i] / p_.volume[i]);
-          material_step = std::min(material_step, options_.viscosity.critical_step(stable_length(p_.volume[i], p_.spacing[i]), p_.wave_speed[i], 0.0));
+          if (counted(i)) material_step = std::min(material_step, options_.viscosity.critical_step(stable_length(p_.volume[i], p_.spacing[i]), p_.wave_speed[i], 0.0));
         }
       },
       material_);
-  if (st_.sphere) sphere_contact_.initialize(*st_.sphere, p_);
+  if (st_.sphere) sphere_contact_.initialize(*st_.sphere, p_, share_ ? &*share_ : nullptr);
   // The first contact forces are predicted over the first step: bound it by the travel before they are
   // computed, then by the contact they give.
   st_.dt_s = stable_step({material_step, travel_limit()});
@@ -195,8 +214,14 @@ Region ExplicitSolver::default_domain() const {
       box.hi[d] = std::max(box.hi[d], x[d] + r);
     }
   };
-  for (std::size_t i = 0; i < p_.n; ++i) grow(p_.x.data() + 3 * i, 0.5 * p_.spacing[i]);
+  for (std::size_t i = 0; i < p_.n; ++i)
+    if (counted(i)) grow(p_.x.data() + 3 * i, 0.5 * p_.spacing[i]);
   if (st_.sphere) grow(st_.sphere->x.data(), st_.sphere->radius_m);
+  if (share_)  // the whole body's box
+    for (int d = 0; d < 3; ++d) {
+      box.lo[d] = ranks_min(box.lo[d]);
+      box.hi[d] = -ranks_min(-box.hi[d]);
+    }
   double extent = 0.0;
   for (int d = 0; d < 3; ++d) extent = std::max(extent, box.hi[d] - box.lo[d]);
   for (int d = 0; d < 3; ++d) {
@@ -223,7 +248,7 @@ void ExplicitSolver::compute_accelerations(double dt) {
   }
   // A position that is not finite or, when the domain is the guard, outside it fails the step (attempt()
   // names it); stop here, before the neighbour search meets it.
-  if (first_non_finite(p_) >= 0 || (domain_is_guard() && first_outside(p_, domain_) >= 0)) return;
+  if (ranks_any(first_non_finite(p_, owned_flags()) >= 0 || (domain_is_guard() && first_outside(p_, domain_, owned_flags()) >= 0))) return;
   const StrainConfiguration config = options_.strain_configuration;
   const bool nsni = second_options() != nullptr;
   if (config == StrainConfiguration::EndpointAverage) {
@@ -244,7 +269,7 @@ void ExplicitSolver::compute_accelerations(double dt) {
     // shapes at x, rebuilt below.
     rebuild_shapes(x_strain, p_.vel_grad.data(), nsni ? p_.vel_grad_grad.data() : nullptr);
     shapes_at_x_ = false;
-    sums = std::visit([&](auto& block) { return update_stresses(block, p_, dt, options_.viscosity); }, material_);
+    sums = std::visit([&](auto& block) { return update_stresses(block, p_, dt, options_.viscosity); }, material_);  // one process only (set_rank_share)
   } else {
     const bool average = config == StrainConfiguration::EndpointAverage;
     // EndpointAverage: the x_n gradients of the rows before prepare replaces them (all of them here,
@@ -257,9 +282,14 @@ void ExplicitSolver::compute_accelerations(double dt) {
         [&](auto& block) {
           return rows_stresses_and_forces(shapes_, force_, block, p_, average ? vel_grad_start_.data() : nullptr,
                                           average && nsni ? vel_grad_grad_start_.data() : nullptr, start_done, dt,
-                                          options_.viscosity);
+                                          options_.viscosity, owned_flags());
         },
         material_);
+  }
+  if (share_) {
+    double works[3] = {sums.stress_work, sums.stabilization_work, sums.viscous_work};
+    ranks_sum(works, 3);
+    sums.stress_work = works[0], sums.stabilization_work = works[1], sums.viscous_work = works[2];
   }
   st_.ledger.internal += sums.stress_work + sums.stabilization_work;
   st_.ledger.stabilization += sums.stabilization_work;
@@ -282,12 +312,18 @@ void ExplicitSolver::compute_accelerations(double dt) {
   double work = 0.0, ix = 0.0, iy = 0.0, iz = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : work, ix, iy, iz) if (n >= kParallelMinParticles)
   for (std::int64_t i = 0; i < n; ++i) {
+    if (!counted(static_cast<std::size_t>(i))) continue;
     double f[3];
     for (int d = 0; d < 3; ++d) f[d] = 0.5 * (st_.f_ext_old[3 * i + d] + p_.f_ext[3 * i + d]);
     for (int d = 0; d < 3; ++d) work += f[d] * (p_.x[3 * i + d] - p_.x_prev[3 * i + d]);
     ix += f[0] * dt;
     iy += f[1] * dt;
     iz += f[2] * dt;
+  }
+  if (share_) {
+    double parts[4] = {work, ix, iy, iz};
+    ranks_sum(parts, 4);
+    work = parts[0], ix = parts[1], iy = parts[2], iz = parts[3];
   }
   st_.ledger.external += work;
   st_.ledger.external_impulse[0] += ix;
@@ -311,7 +347,7 @@ void ExplicitSolver::compute_forces(double dt, double dt_next, bool internal) {
     if (delta <= 0.0) return 0.0;
     const double k = w.penalty_scale * p_.density[i] * p_.wave_speed[i] * p_.wave_speed[i] * p_.spacing[i];
     for (int d = 0; d < 3; ++d) fe[d] += k * delta * w.normal[d];
-    return k * delta;
+    return counted(i) ? k * delta : 0.0;
   };
 #pragma omp parallel for schedule(static) reduction(+ : wall_total) if (n >= kParallelMinParticles)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -323,9 +359,10 @@ void ExplicitSolver::compute_forces(double dt, double dt_next, bool internal) {
   for (const Wall& w : walls_)  // supports over part of the body, one wall after the other
     for (const std::int32_t j : w.particles)
       wall_total += wall_force(w, static_cast<std::size_t>(j), p_.f_ext.data() + 3 * static_cast<std::size_t>(j));
+  ranks_sum(&wall_total, 1);
   st_.wall_force_N = wall_total;
   if (st_.sphere) {
-    st_.contact = sphere_contact_.compute(*st_.sphere, p_, dt, dt_next, p_.f_contact.data());
+    st_.contact = sphere_contact_.compute(*st_.sphere, p_, dt, dt_next, p_.f_contact.data(), share_ ? &*share_ : nullptr);
     st_.sphere->force = st_.contact.force_on_sphere;
   }
   // Prescribed velocities: the reaction cancels every other force (constant velocity, a = 0), so the
@@ -378,10 +415,11 @@ void ExplicitSolver::book_contact_work(double h) {
 #pragma omp parallel for schedule(static) reduction(+ : work) if (n >= kParallelMinParticles)
   for (std::int64_t k = 0; k < 3 * n; ++k) {
     const double f0 = st_.f_contact_old[k], f1 = p_.f_contact[k];
-    if (f0 == 0.0 && f1 == 0.0) continue;
+    if ((f0 == 0.0 && f1 == 0.0) || !counted(static_cast<std::size_t>(k / 3))) continue;
     const double v1 = p_.v[k], v_half = v1 - 0.5 * h * p_.a[k], v0 = v_half - 0.5 * h * a0[k];
     work += 0.25 * h * (f0 * (v0 + v_half) + f1 * (v_half + v1));
   }
+  ranks_sum(&work, 1);
   const RigidSphere& s = *st_.sphere;
   for (int d = 0; d < 3; ++d) {
     const double v1 = s.v[d], v_half = v1 - 0.5 * h * s.force[d] / s.mass_kg;
@@ -398,11 +436,17 @@ void ExplicitSolver::update_momentum_and_kinetic() {
   double ke = 0.0, px = 0.0, py = 0.0, pz = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : ke, px, py, pz) if (n >= kParallelMinParticles)
   for (std::int64_t i = 0; i < n; ++i) {
+    if (!counted(static_cast<std::size_t>(i))) continue;
     const double* v = p_.v.data() + 3 * i;
     ke += 0.5 * p_.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     px += p_.mass[i] * v[0];
     py += p_.mass[i] * v[1];
     pz += p_.mass[i] * v[2];
+  }
+  if (share_) {
+    double parts[4] = {ke, px, py, pz};
+    ranks_sum(parts, 4);
+    ke = parts[0], px = parts[1], py = parts[2], pz = parts[3];
   }
   if (st_.sphere) {
     const RigidSphere& s = *st_.sphere;
@@ -426,6 +470,7 @@ void ExplicitSolver::update_material_books() {
       [&](const auto& block) {
 #pragma omp parallel for schedule(static) reduction(+ : stored, plastic, crushing, opening, stab) if (n >= kParallelMinParticles)
         for (std::int64_t i = 0; i < n; ++i) {
+          if (!counted(static_cast<std::size_t>(i))) continue;
           const auto& st = block.state[static_cast<std::size_t>(i)];
           stored += block.law.stored_energy(st) * p_.volume[i];
           const DissipationParts parts = block.law.dissipation(st);
@@ -436,6 +481,11 @@ void ExplicitSolver::update_material_books() {
         }
       },
       material_);
+  if (share_) {
+    double parts[5] = {stored, plastic, crushing, opening, stab};
+    ranks_sum(parts, 5);
+    stored = parts[0], plastic = parts[1], crushing = parts[2], opening = parts[3], stab = parts[4];
+  }
   st_.ledger.material_stored = stored;
   st_.ledger.material_dissipated = st_.ledger.internal - st_.ledger.stabilization - stored;
   st_.ledger.plastic = plastic;
@@ -477,7 +527,7 @@ StepFailure ExplicitSolver::attempt(double h) {
   update_momentum_and_kinetic();
 
   failure_ = FailureReport{};
-  std::int64_t particle = first_non_finite(p_);
+  std::int64_t particle = first_non_finite(p_, owned_flags());
   StepFailure kind = StepFailure::None;
   if (particle >= 0) {
     kind = StepFailure::NonFinite;
@@ -487,12 +537,20 @@ StepFailure ExplicitSolver::attempt(double h) {
   } else if (inverted_ >= 0) {
     kind = StepFailure::InvertedVolume;
     particle = inverted_;
-  } else if (domain_is_guard() && (particle = first_outside(p_, domain_)) >= 0) {
+  } else if (domain_is_guard() && (particle = first_outside(p_, domain_, owned_flags())) >= 0) {
     kind = StepFailure::OutOfDomain;
   } else if (options_.energy_error_limit > 0 && energy_error_ratio(st_.ledger) > options_.energy_error_limit) {
     kind = StepFailure::EnergyBalance;
     failure_.energy_error = energy_error_ratio(st_.ledger);
-    particle = most_kinetic_particle(p_);  // where the instability shows first
+    particle = most_kinetic_particle(p_, owned_flags());  // where the instability shows first
+  }
+  if (share_) {  // every rank fails the step when one does (the first failure kind of any rank)
+    const double kinds = static_cast<double>(kind == StepFailure::None ? 255 : static_cast<int>(kind));
+    const double first = ranks_min(kinds);
+    if (kind == StepFailure::None && first != 255.0) {
+      kind = static_cast<StepFailure>(static_cast<int>(first));
+      particle = -1;  // another rank's
+    }
   }
   if (kind != StepFailure::None) {
     failure_.kind = kind;
@@ -649,6 +707,50 @@ void ExplicitSolver::resume(const SolverCheckpoint& c) {
   counters_ = c.counters;
   drop_shape_cache();
   save_state();
+}
+
+namespace {
+template <class Block>
+std::size_t state_bytes_per_particle(const Block&) {
+  return sizeof(typename std::decay_t<decltype(std::declval<Block>().state)>::value_type);
+}
+std::size_t doubles_for(std::size_t bytes) { return (bytes + sizeof(double) - 1) / sizeof(double); }
+}  // namespace
+
+std::size_t ExplicitSolver::particle_record_width() const {
+  std::size_t width = 0;
+  for (const EvolvingField& f : kEvolvingFields) width += (p_.*f.field).size() / std::max<std::size_t>(p_.n, 1);
+  return width + doubles_for(std::visit([](const auto& b) { return state_bytes_per_particle(b); }, material_));
+}
+
+void ExplicitSolver::write_particle(std::size_t i, double* out) const {
+  for (const EvolvingField& f : kEvolvingFields) {
+    const std::vector<double>& field = p_.*f.field;
+    const std::size_t w = field.size() / p_.n;
+    out = std::copy(field.data() + w * i, field.data() + w * (i + 1), out);
+  }
+  std::visit(
+      [&](const auto& block) {
+        const std::size_t bytes = state_bytes_per_particle(block);
+        if (bytes > 0) out[doubles_for(bytes) - 1] = 0.0;  // the last double may be partly padding
+        std::memcpy(out, &block.state[i], bytes);
+      },
+      material_);
+}
+
+void ExplicitSolver::read_particle(std::size_t i, const double* in) {
+  for (const EvolvingField& f : kEvolvingFields) {
+    std::vector<double>& field = p_.*f.field;
+    const std::size_t w = field.size() / p_.n;
+    std::copy(in, in + w, field.data() + w * i);
+    in += w;
+  }
+  std::visit([&](auto& block) { std::memcpy(static_cast<void*>(&block.state[i]), in, state_bytes_per_particle(block)); },
+             material_);
+  for (int d = 0; d < 3; ++d) {
+    st_.f_ext_old[3 * i + d] = p_.f_ext[3 * i + d];
+    st_.f_contact_old[3 * i + d] = p_.f_contact[3 * i + d];
+  }
 }
 
 void ExplicitSolver::drop_shape_cache() {

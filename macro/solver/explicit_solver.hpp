@@ -21,6 +21,7 @@
 // times the step just taken, the step is repeated from the saved state with the new stable step.
 // Nothing allocates inside steps once the neighbour counts have settled.
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -32,6 +33,7 @@
 #include "solver/internal_force.hpp"
 #include "solver/material_set.hpp"
 #include "solver/particles.hpp"
+#include "solver/rank_share.hpp"
 #include "solver/rigid_sphere.hpp"
 #include "solver/step_health.hpp"
 #include "solver/second_gradients.hpp"
@@ -139,6 +141,11 @@ class ExplicitSolver {
   void add_prescribed_velocity(const PrescribedVelocity& bc) { prescribed_.push_back(bc); }
   // The free rigid projectile (at most one; validated). Set before initialize() (std::logic_error after).
   void set_sphere(const RigidSphere& sphere);
+  // Makes the solver one rank's part (rank_share.hpp). Before initialize(). Not yet with lazy rows
+  // (shape_reuse_tolerance > 0), the penalty contact or the Midpoint configuration (std::invalid_argument):
+  // lazy rows need the rows' build configurations shipped with the particles.
+  void set_rank_share(RankShare share);
+  bool distributed() const { return share_.has_value(); }
 
   // Forces and accelerations at t = 0, initial energies and momentum, the first stable step. Call once
   // after the conditions are set (initial velocities in particles().v).
@@ -155,6 +162,12 @@ class ExplicitSolver {
   // checkpoint: a run drops it where it writes one (drop_shape_cache), and resume() starts without it,
   // so both rebuild every row from the same state at the next step.
   SolverCheckpoint checkpoint() const;
+  // Particle i's evolving fields (the checkpoint's, in its order) and material state as
+  // particle_record_width() doubles, and back: how a distributed run ships a particle to its ghosts.
+  // read_particle also sets i's forces of the last step (f_ext_old, f_contact_old), as a step leaves them.
+  std::size_t particle_record_width() const;
+  void write_particle(std::size_t i, double* out) const;
+  void read_particle(std::size_t i, const double* in);
   void resume(const SolverCheckpoint& checkpoint);
   void drop_shape_cache();
 
@@ -191,6 +204,15 @@ class ExplicitSolver {
 
  private:
   const SecondGradientOptions* second_options() const;  // null without NSNI
+  // Whether particle i counts in the books, checks and the stable step (every particle but a ghost).
+  bool counted(std::size_t i) const { return !share_ || share_->owned[i] != 0; }
+  const std::uint8_t* owned_flags() const { return share_ ? share_->owned.data() : nullptr; }
+  // The ranks' minimum and sums (RankShare); the value itself in one process.
+  double ranks_min(double value) const { return share_ ? share_->min(value) : value; }
+  void ranks_sum(double* values, int count) const {
+    if (share_) share_->sum(values, count);
+  }
+  bool ranks_any(bool flag) const { return ranks_min(flag ? 0.0 : 1.0) == 0.0; }
   // The stable step, the one place solver.cfl applies: cfl times the smallest of the critical steps
   // given (the particles' from their wave speed and bulk viscosity over the stable length; the sphere
   // contact's from its stiffness and travel; the sphere's travel limit), each known at a different
@@ -233,6 +255,7 @@ class ExplicitSolver {
   StepCounters counters_;
   std::int64_t inverted_ = -1;
   bool initialized_ = false;
+  std::optional<RankShare> share_;
   FailureReport failure_;
   // The last good state, saved at the start of every step (same-size copies: no allocation). Of the
   // particles only the fields a step changes and reads back are kept (kEvolvingFields in

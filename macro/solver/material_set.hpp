@@ -32,6 +32,11 @@ MaterialSet make_material_set(const Law& law, std::size_t n) {
   return MaterialSet(std::in_place_type<MaterialBlock<Law>>, law, n);
 }
 
+// The law of `set` with n fresh states (one rank's part of a body in a distributed run).
+inline MaterialSet same_law(const MaterialSet& set, std::size_t n) {
+  return std::visit([n](const auto& b) { return make_material_set(b.law, n); }, set);
+}
+
 inline double reference_density(const MaterialSet& set) {
   return std::visit([](const auto& b) { return b.law.reference_density(); }, set);
 }

@@ -53,10 +53,11 @@ void RigidSphere::validate() const {
       throw std::invalid_argument("RigidSphere: position and velocity must be finite");
 }
 
-void SphereContact::initialize(const RigidSphere& sphere, const Particles& p) {
+void SphereContact::initialize(const RigidSphere& sphere, const Particles& p, const RankShare* share) {
   k_.resize(p.n);
   min_travel_distance_ = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.n; ++i) {
+    if (share && !share->owned[i]) continue;
     // rho0 c0^2 with rho0 = m / V0: the reference stiffness, whatever the current state.
     const double rho0 = p.mass[i] / p.volume0[i];
     k_[i] = sphere.contact.penalty_scale * rho0 * p.wave_speed[i] * p.wave_speed[i] * p.spacing[i];
@@ -64,6 +65,7 @@ void SphereContact::initialize(const RigidSphere& sphere, const Particles& p) {
     // on the sphere's surface), which would stop the clock.
     min_travel_distance_ = std::min(min_travel_distance_, contact_reach(sphere.contact, p.spacing[i]));
   }
+  if (share) min_travel_distance_ = share->min(min_travel_distance_);
   flagged_.assign(p.n, 0);
   // Room for the particles a shell of one contact diameter around the sphere can hold, several times
   // over (debris piles up), so the candidate lists do not grow during a run.
@@ -79,6 +81,8 @@ void SphereContact::initialize(const RigidSphere& sphere, const Particles& p) {
   gap_.reserve(room);
   normal_.reserve(3 * room);
   force_.reserve(room);
+  mass_.reserve(room);
+  velocity_.reserve(3 * room);
   active_.reserve(room);
 }
 
@@ -88,17 +92,16 @@ double SphereContact::travel_limit(const RigidSphere& sphere) const {
 }
 
 SphereContactSums SphereContact::compute(const RigidSphere& sphere, const Particles& p, double dt, double dt_next,
-                                         double* f_contact) {
+                                         double* f_contact, const RankShare* share) {
   SphereContactSums sums = sphere.contact.model == SphereContactModel::Penalty
                                ? penalty(sphere, p, dt, f_contact)
-                               : kinematic(sphere, p, dt, dt_next, f_contact);
+                               : kinematic(sphere, p, dt, dt_next, f_contact, share);
   sums.critical_step = std::min(sums.critical_step, travel_limit(sphere));
   return sums;
 }
 
-void SphereContact::add_friction(const RigidSphere& s, const Particles& p, std::size_t i, const double* n,
-                                 double normal_force, double dt, double* f) {
-  const double* v = p.v.data() + 3 * i;
+void SphereContact::add_friction(const RigidSphere& s, const double* v, double m, const double* n, double normal_force,
+                                 double dt, double* f) {
   double w[3], wn = 0.0;
   for (int c = 0; c < 3; ++c) {
     w[c] = v[c] - s.v[c];
@@ -107,7 +110,7 @@ void SphereContact::add_friction(const RigidSphere& s, const Particles& p, std::
   for (int c = 0; c < 3; ++c) w[c] -= wn * n[c];  // tangential part
   const double wt = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
   if (wt > 0.0) {
-    const double ft = std::min(s.contact.friction_coefficient * normal_force, p.mass[i] * wt / dt);
+    const double ft = std::min(s.contact.friction_coefficient * normal_force, m * wt / dt);
     for (int c = 0; c < 3; ++c) f[c] -= ft * w[c] / wt;
   }
 }
@@ -135,7 +138,7 @@ SphereContactSums SphereContact::penalty(const RigidSphere& s, const Particles& 
     const double magnitude = k_[i] * delta;
     const double normal[3] = {r[0] / d, r[1] / d, r[2] / d};
     for (int c = 0; c < 3; ++c) f[c] = magnitude * normal[c];
-    if (friction) add_friction(s, p, static_cast<std::size_t>(i), normal, magnitude, dt, f);
+    if (friction) add_friction(s, p.v.data() + 3 * i, p.mass[i], normal, magnitude, dt, f);
     fx -= f[0];
     fy -= f[1];
     fz -= f[2];
@@ -153,7 +156,7 @@ SphereContactSums SphereContact::penalty(const RigidSphere& s, const Particles& 
 }
 
 SphereContactSums SphereContact::kinematic(const RigidSphere& s, const Particles& p, double dt, double dt_next,
-                                           double* f_contact) {
+                                           double* f_contact, const RankShare* share) {
   const std::int64_t n = static_cast<std::int64_t>(p.n);
   // The forces act over the second half kick of this step and the first of the next, so they move the
   // position after the next drift by dt2 = dt_next (dt + dt_next) / 2 per unit acceleration; the drift
@@ -178,12 +181,12 @@ SphereContactSums SphereContact::kinematic(const RigidSphere& s, const Particles
   }
   candidates_.clear();
   for (std::int64_t i = 0; i < n; ++i)
-    if (flagged_[i]) candidates_.push_back(static_cast<std::int32_t>(i));
-  const std::size_t m = candidates_.size();
+    if (flagged_[i] && (!share || share->owned[static_cast<std::size_t>(i)])) candidates_.push_back(static_cast<std::int32_t>(i));
+  std::size_t m = candidates_.size();
   gap_.resize(m);
   normal_.resize(3 * m);
-  force_.resize(m);
-  active_.resize(m);
+  mass_.resize(m);
+  velocity_.resize(3 * m);
   for (std::size_t c = 0; c < m; ++c) {
     const std::size_t i = static_cast<std::size_t>(candidates_[c]);
     double r[3], now[3], unused[3];
@@ -197,8 +200,15 @@ SphereContactSums SphereContact::kinematic(const RigidSphere& s, const Particles
     // equals this one) is held, not pushed out, so the contact never throws a particle off.
     gap_[c] = contact_gap(s.contact, s.radius_m, r_I, r, normal_.data() + 3 * c) -
               std::min(0.0, contact_gap(s.contact, s.radius_m, r_I, now, unused));
-    active_[c] = gap_[c] < 0.0;
+    mass_[c] = p.mass[i];
+    for (int k = 0; k < 3; ++k) velocity_[3 * c + k] = p.v[3 * i + k];
   }
+  local_.assign(candidates_.begin(), candidates_.end());
+  if (share) gather_candidates(*share);
+  m = gap_.size();
+  force_.resize(m);
+  active_.resize(m);
+  for (std::size_t c = 0; c < m; ++c) active_[c] = gap_[c] < 0.0;
   // 2. The active set: the forces that close every predicted gap of the active particles, the sphere
   // recoiling under their sum S. Particles pulled (F < 0) leave; particles the recoil meets join.
   const double M = s.mass_kg;
@@ -209,7 +219,7 @@ SphereContactSums SphereContact::kinematic(const RigidSphere& s, const Particles
     for (std::size_t c = 0; c < m; ++c) {
       if (!active_[c]) continue;
       const Eigen::Vector3d nc(normal_.data() + 3 * c);
-      const double mass = p.mass[static_cast<std::size_t>(candidates_[c])];
+      const double mass = mass_[c];
       A += (mass / M) * nc * nc.transpose();
       b += (-mass * gap_[c] / dt2) * nc;
     }
@@ -219,7 +229,7 @@ SphereContactSums SphereContact::kinematic(const RigidSphere& s, const Particles
       const Eigen::Vector3d nc(normal_.data() + 3 * c);
       const double recoil = nc.dot(S) / M;  // the sphere's correction seen along n, per dt^2
       if (active_[c]) {
-        force_[c] = p.mass[static_cast<std::size_t>(candidates_[c])] * (-gap_[c] / dt2 - recoil);
+        force_[c] = mass_[c] * (-gap_[c] / dt2 - recoil);
         if (force_[c] < 0.0) active_[c] = 0, changed = true;
       } else if (gap_[c] + dt2 * recoil < 0.0) {
         active_[c] = 1, changed = true;
@@ -234,16 +244,50 @@ SphereContactSums SphereContact::kinematic(const RigidSphere& s, const Particles
   double on_sphere[3] = {0.0, 0.0, 0.0};
   for (std::size_t c = 0; c < m; ++c) {
     if (!active_[c] || !(force_[c] > 0.0)) continue;
-    const std::size_t i = static_cast<std::size_t>(candidates_[c]);
-    double* f = f_contact + 3 * i;
+    double f[3];
     const double* nc = normal_.data() + 3 * c;
     for (int k = 0; k < 3; ++k) f[k] = force_[c] * nc[k];
-    if (friction) add_friction(s, p, i, nc, force_[c], 0.5 * (dt + dt_next), f);  // the kicks' duration
+    if (friction) add_friction(s, velocity_.data() + 3 * c, mass_[c], nc, force_[c], 0.5 * (dt + dt_next), f);  // the kicks' duration
     for (int k = 0; k < 3; ++k) on_sphere[k] -= f[k];
+    if (local_[c] >= 0)
+      for (int k = 0; k < 3; ++k) f_contact[3 * static_cast<std::size_t>(local_[c]) + k] = f[k];
     ++sums.particles_in_contact;
   }
   sums.force_on_sphere = {on_sphere[0], on_sphere[1], on_sphere[2]};
   return sums;
+}
+
+void SphereContact::gather_candidates(const RankShare& share) {
+  // A record a candidate: its id, gap, normal, mass and velocity (9 doubles; ids below 2^53 are exact).
+  constexpr std::size_t kWidth = 9;
+  const std::size_t mine = gap_.size();
+  mine_.resize(kWidth * mine);
+  for (std::size_t c = 0; c < mine; ++c) {
+    double* r = mine_.data() + kWidth * c;
+    r[0] = static_cast<double>(share.ids[static_cast<std::size_t>(candidates_[c])]);
+    r[1] = gap_[c];
+    for (int k = 0; k < 3; ++k) r[2 + k] = normal_[3 * c + k], r[6 + k] = velocity_[3 * c + k];
+    r[5] = mass_[c];
+  }
+  share.gather(mine_, all_);
+  const std::size_t m = all_.size() / kWidth;
+  order_.resize(m);
+  for (std::size_t c = 0; c < m; ++c) order_[c] = c;
+  std::sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return all_[kWidth * a] < all_[kWidth * b]; });
+  gap_.resize(m);
+  normal_.resize(3 * m);
+  mass_.resize(m);
+  velocity_.resize(3 * m);
+  local_.assign(m, -1);
+  std::size_t own = 0;  // this rank's candidates, ascending ids as the gathered order meets them
+  for (std::size_t c = 0; c < m; ++c) {
+    const double* r = all_.data() + kWidth * order_[c];
+    gap_[c] = r[1];
+    for (int k = 0; k < 3; ++k) normal_[3 * c + k] = r[2 + k], velocity_[3 * c + k] = r[6 + k];
+    mass_[c] = r[5];
+    if (own < mine && static_cast<double>(share.ids[static_cast<std::size_t>(candidates_[own])]) == r[0])
+      local_[c] = candidates_[own++];
+  }
 }
 
 }  // namespace uhpc::macro

@@ -71,6 +71,7 @@
 
 #include "solver/conditions.hpp"
 #include "solver/particles.hpp"
+#include "solver/rank_share.hpp"
 
 namespace uhpc::macro {
 
@@ -125,31 +126,43 @@ class SphereContact {
  public:
   // Fixes the penalty stiffness from the reference density and the current (initial) wave speeds, and
   // the smallest contact radius; sizes the scratch (no allocation in the steps after).
-  void initialize(const RigidSphere& sphere, const Particles& p);
+  // share (a distributed run's rank, rank_share.hpp): the owned particles count, and the kinematic
+  // contact's active set is solved over every rank's candidates, gathered in the order of their ids, so
+  // that each rank finds the one-process forces and the same force on the sphere.
+  void initialize(const RigidSphere& sphere, const Particles& p, const RankShare* share = nullptr);
   // The contact force of every particle into f_contact (3n; zero where there is none), with the
   // particles' internal and external forces already in p.f_int and p.f_ext (the kinematic model
   // predicts the motion they cause). The forces act over the second half kick of the step dt that
   // produced this configuration (0 at the start: there is none) and the first half kick of the next
   // step dt_next, after which the particles drift by dt_next times their velocity.
   SphereContactSums compute(const RigidSphere& sphere, const Particles& p, double dt, double dt_next,
-                            double* f_contact);
+                            double* f_contact, const RankShare* share = nullptr);
   // The time the sphere takes to travel the smallest contact radius (a bound of the step).
   double travel_limit(const RigidSphere& sphere) const;
 
  private:
   SphereContactSums penalty(const RigidSphere& sphere, const Particles& p, double dt, double* f_contact) const;
   SphereContactSums kinematic(const RigidSphere& sphere, const Particles& p, double dt, double dt_next,
-                              double* f_contact);
-  // Adds the Coulomb force of pair i with normal force `normal_force` along the unit normal n.
-  static void add_friction(const RigidSphere& s, const Particles& p, std::size_t i, const double* n,
-                           double normal_force, double dt, double* f);
+                              double* f_contact, const RankShare* share);
+  // The candidates of every rank in the order of their global ids (a distributed run).
+  void gather_candidates(const RankShare& share);
+  // Adds the Coulomb force of a pair of particle velocity v and mass m with normal force `normal_force`
+  // along the unit normal n.
+  static void add_friction(const RigidSphere& s, const double* v, double m, const double* n, double normal_force,
+                           double dt, double* f);
 
   std::vector<double> k_;                // penalty stiffness per particle
   double min_travel_distance_ = 0.0;
   std::vector<unsigned char> flagged_;   // kinematic: would penetrate without contact forces
   std::vector<std::int32_t> candidates_;
   std::vector<double> gap_, normal_, force_;  // per candidate (normal: 3 each)
+  std::vector<double> mass_, velocity_;       // per candidate (velocity: 3 each)
   std::vector<unsigned char> active_;
+  // Distributed: per candidate, the particle's index here when it is owned here (-1 otherwise); and
+  // the records the ranks exchange.
+  std::vector<std::int64_t> local_;
+  std::vector<double> mine_, all_;
+  std::vector<std::size_t> order_;
 };
 
 }  // namespace uhpc::macro

@@ -50,18 +50,22 @@ inline double energy_error_ratio(const EnergyLedger& e) {
   return put_in > 0.0 ? std::fabs(e.balance_error()) / put_in : 0.0;
 }
 
+// counted (optional, one a particle): only the particles with a non-zero entry are looked at (a
+// distributed run's owned particles, RankShare).
+
 // The lowest index of a particle with a non-finite position or velocity, else -1.
-inline std::int64_t first_non_finite(const Particles& p) {
+inline std::int64_t first_non_finite(const Particles& p, const std::uint8_t* counted = nullptr) {
   for (std::size_t i = 0; i < 3 * p.n; ++i)
-    if (!std::isfinite(p.x[i]) || !std::isfinite(p.v[i])) return static_cast<std::int64_t>(i / 3);
+    if ((!std::isfinite(p.x[i]) || !std::isfinite(p.v[i])) && (!counted || counted[i / 3])) return static_cast<std::int64_t>(i / 3);
   return -1;
 }
 
 // The particle with the largest kinetic energy (-1 for none).
-inline std::int64_t most_kinetic_particle(const Particles& p) {
+inline std::int64_t most_kinetic_particle(const Particles& p, const std::uint8_t* counted = nullptr) {
   std::int64_t best = -1;
   double most = -1.0;
   for (std::size_t i = 0; i < p.n; ++i) {
+    if (counted && !counted[i]) continue;
     const double* v = p.v.data() + 3 * i;
     const double k = p.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     if (k > most) most = k, best = static_cast<std::int64_t>(i);
@@ -70,9 +74,9 @@ inline std::int64_t most_kinetic_particle(const Particles& p) {
 }
 
 // The lowest index of a particle outside `box`, else -1.
-inline std::int64_t first_outside(const Particles& p, const Region& box) {
+inline std::int64_t first_outside(const Particles& p, const Region& box, const std::uint8_t* counted = nullptr) {
   for (std::size_t i = 0; i < p.n; ++i)
-    if (!box.contains(p.x.data() + 3 * i)) return static_cast<std::int64_t>(i);
+    if ((!counted || counted[i]) && !box.contains(p.x.data() + 3 * i)) return static_cast<std::int64_t>(i);
   return -1;
 }
 

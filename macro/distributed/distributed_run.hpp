@@ -1,0 +1,75 @@
+#pragma once
+// One explicit run over the ranks of a communicator (issue 49). Each rank steps an ExplicitSolver over
+// its own particles and their ghosts (RankShare: owner computes, so an owned particle's step is the
+// one-process step bit for bit, at one thread a rank), and after every step the owners overwrite their
+// ghosts. The halo is made for a motion of half the Verlet skin s: once a particle has moved that far
+// since, the particles go to their regions' ranks (a migrate, or a new balance past the partition's
+// threshold), and the halo and the rank's solver are made again from the particles' records.
+// Not yet (ExplicitSolver::set_rank_share refuses them): the sphere, lazy rows, the Midpoint strain
+// configuration; nor the outputs, checkpoints and uhpc-macro under mpirun (docs/cluster.md).
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <mpi.h>
+
+#include "distributed/halo.hpp"
+#include "distributed/mpi_session.hpp"
+#include "distributed/particle_partition.hpp"
+#include "distributed/particle_set.hpp"
+#include "solver/explicit_solver.hpp"
+
+namespace uhpc::macro::distributed {
+
+class DistributedRun {
+ public:
+  // The case's solver over the body's particles `ids` (ascending global ids), in their order, with its
+  // conditions set and not initialized. It must give every particle the state the whole body's solver
+  // gives it (positions, initial velocities, walls and prescribed velocities judged on the whole body).
+  using SolverFactory = std::function<ExplicitSolver(const std::vector<std::uint32_t>& ids)>;
+
+  // Collective: partitions the body (`total` particles) and initializes every rank's solver.
+  DistributedRun(MPI_Comm comm, std::size_t total, SolverFactory factory, PartitionOptions options = {});
+  DistributedRun(const DistributedRun&) = delete;
+  DistributedRun& operator=(const DistributedRun&) = delete;
+
+  // One step on every rank (ExplicitSolver::step), the ghosts refreshed, the halo made again when due.
+  // Collective; false on every rank when the step failed (the solvers are back at the last good state).
+  bool step();
+
+  const ExplicitSolver& solver() const { return *solver_; }
+  // The rank's particles' global ids in the solver's order (owned and ghosts), and whether each is owned.
+  const std::vector<std::uint32_t>& local_ids() const { return local_ids_; }
+  const std::vector<std::uint8_t>& owned() const { return owned_mask_; }
+  // The owned particles' current records: the solver's record (ExplicitSolver::write_particle), then
+  // the support radius; sorted by id.
+  const ParticleSet& owned_records();
+  std::size_t halo_builds() const { return halo_builds_; }
+  double halo_build_seconds() const { return halo_build_s_; }  // wall time in them, this rank
+  std::size_t balances() const { return partition_.balances(); }
+  double skin() const { return skin_m_; }
+
+ private:
+  void build_local(bool from_records);  // the halo and the rank's solver from owned_ (collective)
+  void pack_owned();                     // the solver's owned particles into owned_
+  void refresh_ghosts();                 // the owners' values into the ghosts (collective)
+  bool halo_due() const;                 // a particle moved half the skin since the halo (collective)
+
+  CommunicatorCopy comm_;
+  SolverFactory factory_;
+  ParticlePartition partition_;
+  std::unique_ptr<ExplicitSolver> solver_;
+  std::unique_ptr<Halo> halo_;
+  ParticleSet owned_;                          // the owned particles' records, sorted by id
+  std::vector<std::uint32_t> local_ids_;       // the solver's particles' ids
+  std::vector<std::uint8_t> owned_mask_;       // one a solver particle
+  std::vector<std::size_t> owned_at_, ghost_at_;  // where owned_ and the halo's ghosts are in the solver
+  std::vector<double> x_at_halo_;              // the solver's positions when the halo was made
+  double skin_m_ = 0.0, cell_m_ = 0.0;         // s and the reach maps' cell
+  std::size_t halo_builds_ = 0;
+  double halo_build_s_ = 0.0;
+};
+
+}  // namespace uhpc::macro::distributed
