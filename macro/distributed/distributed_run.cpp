@@ -79,7 +79,9 @@ DistributedRun::DistributedRun(MPI_Comm comm, std::size_t total, SolverFactory f
 }
 
 void DistributedRun::build_local(bool from_records) {
-  if (owned_.size() == 0) throw std::runtime_error("DistributedRun: a rank was left without particles; use fewer ranks");
+  int empty = owned_.size() == 0 ? 1 : 0;  // decided together: a rank alone would leave the others waiting
+  MPI_Allreduce(MPI_IN_PLACE, &empty, 1, MPI_INT, MPI_MAX, comm_.get());
+  if (empty) throw std::runtime_error("DistributedRun: a rank was left without particles; use fewer ranks");
   const int width = owned_.width;
   std::vector<double> node_reach(owned_.size()), row_reach(owned_.size());
   for (std::size_t k = 0; k < owned_.size(); ++k) {
@@ -88,6 +90,7 @@ void DistributedRun::build_local(bool from_records) {
     row_reach[k] = a;
   }
   halo_ = std::make_unique<Halo>(partition_, owned_, node_reach, row_reach, cell_m_);
+  sent_ = halo_->sent_rows();
   const ParticleSet local = halo_->local(owned_, &owned_at_);
   local_ids_ = local.id;
   owned_mask_.assign(local.size(), 0);
@@ -99,19 +102,11 @@ void DistributedRun::build_local(bool from_records) {
   auto solver = std::make_unique<ExplicitSolver>(factory_(local_ids_));
   if (solver->particles().n != local_ids_.size()) throw std::logic_error("DistributedRun: the factory gave a solver of another size");
   solver->set_rank_share(rank_share(comm_.get(), owned_mask_, local_ids_));
-  solver->initialize();
-  if (from_records) {
-    // The run's state (time, step, books) from the solver it replaces, the particles from their records.
-    SolverCheckpoint c = solver->checkpoint();
-    const SolverCheckpoint old = solver_->checkpoint();
-    std::vector<double> f_ext_old = std::move(c.state.f_ext_old), f_contact_old = std::move(c.state.f_contact_old);
-    c.state = old.state;
-    c.state.f_ext_old = std::move(f_ext_old);
-    c.state.f_contact_old = std::move(f_contact_old);
-    c.counters = old.counters;
-    solver->resume(c);
+  if (from_records) {  // the particles from their records, the run's state from the solver it replaces
     for (std::size_t i = 0; i < local.size(); ++i) solver->read_particle(i, local.at(i));
-    // resume saved the state before the records came in; the next step saves it again first.
+    solver->continue_from(*solver_);
+  } else {
+    solver->initialize();
   }
   solver_ = std::move(solver);
   // A fresh solver's ghosts hold their own forces of the initial state (their rows are not all here).
@@ -129,24 +124,33 @@ const ParticleSet& DistributedRun::owned_records() {
   return owned_;
 }
 
-bool DistributedRun::halo_due() const {
-  const std::vector<double>& x = solver_->particles().x;
-  const double limit = 0.25 * skin_m_ * skin_m_;  // (s / 2)^2
-  int due = 0;
+// The halo holds every K within a_K + 2 s + a_J of an owned J. A row that touches J when the rows are next
+// built has its point L within a_J of J and its nodes K within a_K of L, so |x_K - x_J| < a_K + a_J then
+// (the start-of-step rows of EndpointAverage are the last step's, built at positions already checked);
+// while no particle will have moved more than s since the halo, |x_K - x_J| was below a_K + a_J + 2 s
+// when it was made. So the largest motion since the halo plus the next step's travel, bounded by
+// dt |v| + dt^2 |a| / 2 (velocity Verlet), must stay within s; the ranks' largest.
+double DistributedRun::reach_after_next_step() const {
+  const Particles& p = solver_->particles();
+  const double dt = solver_->dt();
+  double most = 0.0;
   for (const std::size_t i : owned_at_) {
-    double d2 = 0.0;
-    for (int d = 0; d < 3; ++d) d2 += (x[3 * i + d] - x_at_halo_[3 * i + d]) * (x[3 * i + d] - x_at_halo_[3 * i + d]);
-    if (d2 > limit) {
-      due = 1;
-      break;
+    double moved2 = 0.0, v2 = 0.0, a2 = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      const double m = p.x[3 * i + d] - x_at_halo_[3 * i + d];
+      moved2 += m * m;
+      v2 += p.v[3 * i + d] * p.v[3 * i + d];
+      a2 += p.a[3 * i + d] * p.a[3 * i + d];
     }
+    const double travel = dt * std::sqrt(v2) + 0.5 * dt * dt * std::sqrt(a2);
+    most = std::max(most, std::sqrt(moved2) + travel);
   }
-  MPI_Allreduce(MPI_IN_PLACE, &due, 1, MPI_INT, MPI_MAX, comm_.get());
-  return due != 0;
+  if (!std::isfinite(most)) most = std::numeric_limits<double>::infinity();
+  return -all_min(-most, comm_.get());
 }
 
 void DistributedRun::refresh_ghosts() {
-  pack_owned();
+  for (const std::uint32_t k : sent_) solver_->write_particle(owned_at_[k], owned_.at(k));
   halo_->refresh(owned_);
   const ParticleSet& ghosts = halo_->ghosts();
   for (std::size_t g = 0; g < ghosts.size(); ++g) solver_->read_particle(ghost_at_[g], ghosts.at(g));
@@ -155,12 +159,17 @@ void DistributedRun::refresh_ghosts() {
 bool DistributedRun::step() {
   if (!solver_->step()) return false;
   refresh_ghosts();
-  if (halo_due()) {
+  if (reach_after_next_step() > skin_m_) {
     const auto t0 = std::chrono::steady_clock::now();
+    pack_owned();
     partition_.rebalance_if_needed(owned_);
     owned_.sort_by_id();
     build_local(true);
     halo_build_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double travel = reach_after_next_step();  // the travel alone, just after the build
+    if (travel > skin_m_)
+      throw std::runtime_error("DistributedRun: a particle may travel " + std::to_string(travel) +
+                               " m in the next step, more than the halo's skin (" + std::to_string(skin_m_) + " m)");
   }
   return true;
 }

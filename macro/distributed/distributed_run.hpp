@@ -2,11 +2,13 @@
 // One explicit run over the ranks of a communicator (issue 49). Each rank steps an ExplicitSolver over
 // its own particles and their ghosts (RankShare: owner computes, so an owned particle's step is the
 // one-process step bit for bit, at one thread a rank), and after every step the owners overwrite their
-// ghosts. The halo is made for a motion of half the Verlet skin s: once a particle has moved that far
-// since, the particles go to their regions' ranks (a migrate, or a new balance past the partition's
+// ghosts. The halo is made for a motion of one Verlet skin s (distributed_run.cpp): once a particle could
+// have moved that far by the end of the next step, the particles go to their regions' ranks (a migrate, or a new balance past the partition's
 // threshold), and the halo and the rank's solver are made again from the particles' records.
-// Not yet (ExplicitSolver::set_rank_share refuses them): the sphere, lazy rows, the Midpoint strain
-// configuration; nor the outputs, checkpoints and uhpc-macro under mpirun (docs/cluster.md).
+// Not yet (ExplicitSolver::set_rank_share refuses them): lazy rows, the penalty contact, the Midpoint
+// strain configuration; nor the outputs, checkpoints and uhpc-macro under mpirun (docs/cluster.md).
+// Every call is collective and assumes every rank gets through it: a caller that catches an exception
+// on one rank must end the job (MPI_Abort), as the others may be waiting for it.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -55,7 +57,9 @@ class DistributedRun {
   void build_local(bool from_records);  // the halo and the rank's solver from owned_ (collective)
   void pack_owned();                     // the solver's owned particles into owned_
   void refresh_ghosts();                 // the owners' values into the ghosts (collective)
-  bool halo_due() const;                 // a particle moved half the skin since the halo (collective)
+  // The largest motion of a particle since the halo plus its travel in the next step, over the ranks
+  // (collective): the halo is good while it is within the skin.
+  double reach_after_next_step() const;
 
   CommunicatorCopy comm_;
   SolverFactory factory_;
@@ -66,6 +70,7 @@ class DistributedRun {
   std::vector<std::uint32_t> local_ids_;       // the solver's particles' ids
   std::vector<std::uint8_t> owned_mask_;       // one a solver particle
   std::vector<std::size_t> owned_at_, ghost_at_;  // where owned_ and the halo's ghosts are in the solver
+  std::vector<std::uint32_t> sent_;            // the rows of owned_ that are other ranks' ghosts
   std::vector<double> x_at_halo_;              // the solver's positions when the halo was made
   double skin_m_ = 0.0, cell_m_ = 0.0;         // s and the reach maps' cell
   std::size_t halo_builds_ = 0;

@@ -28,6 +28,13 @@ Halo::Halo(const ParticlePartition& partition, const ParticleSet& owned, const s
   ghosts_ = transfer_->carry(owned);
 }
 
+std::vector<std::uint32_t> Halo::sent_rows() const {
+  std::vector<std::uint32_t> rows = transfer_->rows();
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  return rows;
+}
+
 ParticleSet Halo::local(const ParticleSet& owned, std::vector<std::size_t>* owned_at) const {
   if (owned.width != ghosts_.width || !std::is_sorted(owned.id.begin(), owned.id.end()))
     throw std::logic_error("Halo::local: the owned set must be the halo's, sorted by id");

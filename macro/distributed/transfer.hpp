@@ -27,6 +27,8 @@ class Transfer {
   // The same rows' values again (ids unchanged), into `to` as carry returned it. After carry, from the
   // same set (the same ids in the same places; std::logic_error when its size or width changed).
   void refresh(const ParticleSet& from, ParticleSet& to) const;
+  // The rows sent (refresh reads only these of `from`), in the plan's order, a row once per rank.
+  const std::vector<std::uint32_t>& rows() const { return rows_; }
 
  private:
   std::vector<std::uint32_t> rows_;

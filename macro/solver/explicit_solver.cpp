@@ -132,6 +132,8 @@ void ExplicitSolver::set_rank_share(RankShare share) {
     throw std::invalid_argument("ExplicitSolver::set_rank_share: one owned flag and one id per particle are required");
   if (!share.min || !share.sum || !share.gather)
     throw std::invalid_argument("ExplicitSolver::set_rank_share: the ranks' min, sum and gather are required");
+  if (!std::is_sorted(share.ids.begin(), share.ids.end()))
+    throw std::invalid_argument("ExplicitSolver::set_rank_share: the particles must be in ascending global ids");
   if (st_.sphere && st_.sphere->contact.model == SphereContactModel::Penalty)
     throw std::invalid_argument("ExplicitSolver::set_rank_share: the penalty contact is not distributed yet");
   if (options_.shape_reuse_tolerance > 0)
@@ -139,6 +141,23 @@ void ExplicitSolver::set_rank_share(RankShare share) {
   if (options_.strain_configuration == StrainConfiguration::Midpoint)
     throw std::invalid_argument("ExplicitSolver::set_rank_share: the midpoint strain configuration is not distributed yet");
   share_ = std::move(share);
+}
+
+void ExplicitSolver::continue_from(const ExplicitSolver& previous) {
+  if (initialized_) throw std::logic_error("ExplicitSolver::continue_from: the solver is already initialized");
+  if (!share_ || !previous.initialized_) throw std::logic_error("ExplicitSolver::continue_from: for a distributed run's rank solvers");
+  if (st_.sphere.has_value() != previous.st_.sphere.has_value())
+    throw std::invalid_argument("ExplicitSolver::continue_from: the solvers disagree on the sphere");
+  std::vector<double> f_ext_old = std::move(st_.f_ext_old), f_contact_old = std::move(st_.f_contact_old);  // read_particle's
+  st_ = previous.st_;
+  st_.f_ext_old = std::move(f_ext_old);
+  st_.f_contact_old = std::move(f_contact_old);
+  counters_ = previous.counters_;
+  domain_ = previous.domain_;
+  if (st_.sphere) sphere_contact_.initialize(*st_.sphere, p_, &*share_);
+  drop_shape_cache();
+  save_state();
+  initialized_ = true;
 }
 
 void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
@@ -547,16 +566,19 @@ StepFailure ExplicitSolver::attempt(double h) {
   if (share_) {  // every rank fails the step when one does (the first failure kind of any rank)
     const double kinds = static_cast<double>(kind == StepFailure::None ? 255 : static_cast<int>(kind));
     const double first = ranks_min(kinds);
-    if (kind == StepFailure::None && first != 255.0) {
-      kind = static_cast<StepFailure>(static_cast<int>(first));
+    const StepFailure agreed = first == 255.0 ? StepFailure::None : static_cast<StepFailure>(static_cast<int>(first));
+    if (agreed != kind) {  // so that no rank repeats the step while another gives it up
+      kind = agreed;
       particle = -1;  // another rank's
     }
+    if (kind == StepFailure::EnergyBalance) failure_.energy_error = energy_error_ratio(st_.ledger);
   }
   if (kind != StepFailure::None) {
     failure_.kind = kind;
     failure_.particle = particle;
     if (particle >= 0) {
       const std::size_t i = static_cast<std::size_t>(particle);
+      if (share_) failure_.particle = share_->ids[i];  // a distributed run names the particle by its global id
       for (int d = 0; d < 3; ++d) {
         failure_.x[d] = p_.x[3 * i + d];
         failure_.v[d] = p_.v[3 * i + d];
@@ -659,6 +681,7 @@ void ExplicitSolver::restore_state() {
 }
 
 SolverCheckpoint ExplicitSolver::checkpoint() const {
+  if (share_) throw std::logic_error("ExplicitSolver::checkpoint: a distributed run's checkpoints are not implemented yet");
   SolverCheckpoint c;
   for (const EvolvingField& f : kEvolvingFields) c.particle_fields.emplace_back(f.name, p_.*f.field);
   std::visit(
@@ -680,6 +703,7 @@ SolverCheckpoint ExplicitSolver::checkpoint() const {
 
 void ExplicitSolver::resume(const SolverCheckpoint& c) {
   if (!initialized_) throw std::logic_error("ExplicitSolver::resume: call after initialize()");
+  if (share_) throw std::logic_error("ExplicitSolver::resume: a distributed run's checkpoints are not implemented yet");
   // The fields by name (a file may list them in another order), each of the solver's size.
   std::vector<const std::vector<double>*> fields;
   for (const EvolvingField& f : kEvolvingFields) {

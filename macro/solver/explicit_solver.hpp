@@ -145,6 +145,11 @@ class ExplicitSolver {
   // (shape_reuse_tolerance > 0), the penalty contact or the Midpoint configuration (std::invalid_argument):
   // lazy rows need the rows' build configurations shipped with the particles.
   void set_rank_share(RankShare share);
+  // In place of initialize(), for a distributed run's new rank solver (set_rank_share called, every
+  // particle's state already in through read_particle): the run goes on from `previous`, the solver it
+  // replaces (the time, step, books, sphere and domain are the run's, the same on every rank). The rows
+  // are built at the next step.
+  void continue_from(const ExplicitSolver& previous);
   bool distributed() const { return share_.has_value(); }
 
   // Forces and accelerations at t = 0, initial energies and momentum, the first stable step. Call once

@@ -83,6 +83,7 @@ void SphereContact::initialize(const RigidSphere& sphere, const Particles& p, co
   force_.reserve(room);
   mass_.reserve(room);
   velocity_.reserve(3 * room);
+  local_.reserve(room);
   active_.reserve(room);
 }
 

@@ -3,7 +3,7 @@
 // two ways: its core thrown at t = 0 (300 m/s into the disc and 180 m/s across it, over a radius of 8
 // mm), which carries particles across the ranks' regions, and the shipped case's sphere at 817 m/s,
 // whose kinematic contact is solved over every rank's candidates. After every step the owners
-// refresh their ghosts; every half skin of motion the particles migrate and the halo and the rank's
+// refresh their ghosts; every skin of motion the particles migrate and the halo and the rank's
 // solvers are made again from the records. After the run, every particle's evolving fields and
 // material state, the time and the step equal the one-process run's bit for bit, at 1-4 ranks, one
 // thread a rank; the energy books, which each rank sums over its own particles before the ranks' sums
@@ -164,6 +164,33 @@ void expect_the_one_process_run(Strike strike) {
   std::printf("%d ranks: %zu particles, %zu halo builds, %zu balances, %zu changed ranks, largest axial motion %.2f mm, "
               "kinetic %.6g J, opening %.6g J\n",
               size, all.size(), run.halo_builds(), run.balances(), migrated, 1e3 * moved, a.kinetic, a.opening);
+}
+
+// A particle whose velocity is not finite fails the first step on its rank: every rank must give the
+// step up with the same failure as one process (none may repeat it while another stops).
+TEST(MacroDistributedStep, AFailureOnOneRankIsTheSameFailureOnEvery) {
+  const SmallDisc disc(Strike::Core);
+  const std::uint32_t broken = 517;
+  const auto factory = [&](const std::vector<std::uint32_t>& ids) {
+    ExplicitSolver s = disc.solver(ids);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      if (ids[i] == broken) s.particles().v[3 * i] = std::nan("");
+    return s;
+  };
+  ExplicitSolver one = factory(all_ids(disc.size()));
+  one.initialize();
+  ASSERT_FALSE(one.step());
+  DistributedRun run(MPI_COMM_WORLD, disc.size(), factory);
+  EXPECT_FALSE(run.step());
+  EXPECT_EQ(run.solver().failure().kind, one.failure().kind) << to_string(run.solver().failure().kind);
+  EXPECT_NE(one.failure().kind, StepFailure::None);
+  EXPECT_EQ(run.solver().time(), 0.0);
+  // The owner names the particle by its global id, as one process does.
+  const auto owner = std::find(run.local_ids().begin(), run.local_ids().end(), broken);
+  if (owner != run.local_ids().end() && run.owned()[static_cast<std::size_t>(owner - run.local_ids().begin())]) {
+    EXPECT_EQ(run.solver().failure().particle, static_cast<std::int64_t>(broken));
+    EXPECT_EQ(one.failure().particle, static_cast<std::int64_t>(broken));
+  }
 }
 
 TEST(MacroDistributedStep, AThrownCoreEqualsTheOneProcessRunBitForBit) { expect_the_one_process_run(Strike::Core); }
