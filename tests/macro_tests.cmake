@@ -57,12 +57,15 @@ if(UHPC_MPI)
     list(APPEND _uhpc_mpi_env "ASAN_OPTIONS=detect_leaks=0")
   endif()
   set(_uhpc_mpirun ${UHPC_MPIEXEC} --oversubscribe -np)
-  foreach(np 1 2 3 4)
-    add_test(NAME unit.MacroDistributed.ranks_${np}
-             COMMAND ${_uhpc_mpirun} ${np} $<TARGET_FILE:unit_test_macro_distributed>)
-    set_tests_properties(unit.MacroDistributed.ranks_${np} PROPERTIES LABELS unit TIMEOUT 180 PROCESSORS ${np}
-                         ENVIRONMENT "${_uhpc_mpi_env}")
-  endforeach()
+  # The cases PREFIX.ranks_N: TARGET under mpirun at each rank count N given after the timeout.
+  function(uhpc_add_mpi_tests prefix target label timeout)
+    foreach(np ${ARGN})
+      add_test(NAME ${prefix}.ranks_${np} COMMAND ${_uhpc_mpirun} ${np} $<TARGET_FILE:${target}>)
+      set_tests_properties(${prefix}.ranks_${np} PROPERTIES LABELS ${label} TIMEOUT ${timeout} PROCESSORS ${np}
+                           ENVIRONMENT "${_uhpc_mpi_env}")
+    endforeach()
+  endfunction()
+  uhpc_add_mpi_tests(unit.MacroDistributed unit_test_macro_distributed unit 180 1 2 3 4)
   add_test(NAME unit.MacroDistributed.without_mpirun COMMAND unit_test_macro_distributed)
   set_tests_properties(unit.MacroDistributed.without_mpirun PROPERTIES LABELS unit TIMEOUT 180
                        ENVIRONMENT "${_uhpc_mpi_env}")
@@ -72,33 +75,18 @@ if(UHPC_MPI)
                         GTest::gtest uhpc_warnings)
   target_compile_definitions(unit_test_macro_distributed_records PRIVATE UHPC_DATA_DIR="${CMAKE_SOURCE_DIR}/data")
   target_include_directories(unit_test_macro_distributed_records PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/support)
-  foreach(np 1 2 3)
-    add_test(NAME unit.MacroDistributedRecords.ranks_${np}
-             COMMAND ${_uhpc_mpirun} ${np} $<TARGET_FILE:unit_test_macro_distributed_records>)
-    set_tests_properties(unit.MacroDistributedRecords.ranks_${np} PROPERTIES LABELS unit TIMEOUT 300 PROCESSORS ${np}
-                         ENVIRONMENT "${_uhpc_mpi_env}")
-  endforeach()
+  uhpc_add_mpi_tests(unit.MacroDistributedRecords unit_test_macro_distributed_records unit 300 1 2 3)
   # The halo's depth on the real rows and internal force: the serial force bit for bit at 1-4 ranks.
   add_executable(verification_test_macro_distributed_rows verification/test_macro_distributed_rows.cpp
                  support/mpi_test_main.cpp)
   target_link_libraries(verification_test_macro_distributed_rows PRIVATE uhpc_macro_distributed uhpc_macro_solver
                         GTest::gtest uhpc_warnings)
-  foreach(np 1 2 3 4)
-    add_test(NAME verification.MacroDistributedRows.ranks_${np}
-             COMMAND ${_uhpc_mpirun} ${np} $<TARGET_FILE:verification_test_macro_distributed_rows>)
-    set_tests_properties(verification.MacroDistributedRows.ranks_${np} PROPERTIES LABELS verification
-                         TIMEOUT 300 PROCESSORS ${np} ENVIRONMENT "${_uhpc_mpi_env}")
-  endforeach()
+  uhpc_add_mpi_tests(verification.MacroDistributedRows verification_test_macro_distributed_rows verification 300 1 2 3 4)
   # The distributed step: a struck disc stepped at 1-4 ranks equals the one-process run bit for bit.
   add_executable(verification_test_macro_distributed_step verification/test_macro_distributed_step.cpp
                  support/mpi_test_main.cpp)
   target_link_libraries(verification_test_macro_distributed_step PRIVATE uhpc_macro_distributed uhpc_macro_app
                         GTest::gtest uhpc_warnings)
   target_compile_definitions(verification_test_macro_distributed_step PRIVATE UHPC_DATA_DIR="${CMAKE_SOURCE_DIR}/data")
-  foreach(np 1 2 3 4)
-    add_test(NAME verification.MacroDistributedStep.ranks_${np}
-             COMMAND ${_uhpc_mpirun} ${np} $<TARGET_FILE:verification_test_macro_distributed_step>)
-    set_tests_properties(verification.MacroDistributedStep.ranks_${np} PROPERTIES LABELS verification
-                         TIMEOUT 600 PROCESSORS ${np} ENVIRONMENT "${_uhpc_mpi_env}")
-  endforeach()
+  uhpc_add_mpi_tests(verification.MacroDistributedStep verification_test_macro_distributed_step verification 600 1 2 3 4)
 endif()

@@ -22,20 +22,12 @@
 #include "distributed/gather.hpp"
 #include "distributed/mpi_session.hpp"
 #include "material_factory.hpp"
+#include "mpi_timing.hpp"
 #include "uhpc/config.hpp"
 
 using namespace uhpc::macro;
 using namespace uhpc::macro::distributed;
-
-namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-double max_over_ranks(double mine) {
-  MPI_Allreduce(MPI_IN_PLACE, &mine, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  return mine;
-}
-}  // namespace
+using namespace uhpc::macro::bench;
 
 int main(int argc, char** argv) {
   MpiSession mpi(&argc, &argv);

@@ -19,6 +19,7 @@
 #include "distributed/halo.hpp"
 #include "distributed/mpi_session.hpp"
 #include "distributed/particle_partition.hpp"
+#include "mpi_timing.hpp"
 #include "solver/internal_force.hpp"
 #include "solver/particles.hpp"
 #include "solver/shape_cache.hpp"
@@ -26,22 +27,7 @@
 
 using namespace uhpc::macro;
 using namespace uhpc::macro::distributed;
-
-namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-double max_over_ranks(double mine) {
-  double most = 0.0;
-  MPI_Allreduce(&mine, &most, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  return most;
-}
-double sum_over_ranks(double mine) {
-  double total = 0.0;
-  MPI_Allreduce(&mine, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  return total;
-}
-}  // namespace
+using namespace uhpc::macro::bench;
 
 int main(int argc, char** argv) {
   MpiSession mpi(&argc, &argv);
