@@ -143,6 +143,17 @@ void ExplicitSolver::set_rank_share(RankShare share) {
   share_ = std::move(share);
 }
 
+void ExplicitSolver::ranks_sum(std::initializer_list<double*> values) const {
+  if (!share_) return;
+  double sums[8];
+  if (values.size() > std::size(sums)) throw std::logic_error("ExplicitSolver::ranks_sum: more values than it holds");
+  std::size_t k = 0;
+  for (const double* v : values) sums[k++] = *v;
+  share_->sum(sums, static_cast<int>(k));
+  k = 0;
+  for (double* v : values) *v = sums[k++];
+}
+
 void ExplicitSolver::continue_from(const ExplicitSolver& previous) {
   if (initialized_) throw std::logic_error("ExplicitSolver::continue_from: the solver is already initialized");
   if (!share_ || !previous.initialized_) throw std::logic_error("ExplicitSolver::continue_from: for a distributed run's rank solvers");
@@ -170,8 +181,7 @@ void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
 }
 
 double ExplicitSolver::stable_step(std::initializer_list<double> critical_steps) const {
-  if (share_) return options_.cfl * ranks_min(std::min(critical_steps));
-  return options_.cfl * std::min(critical_steps);
+  return options_.cfl * ranks_min(std::min(critical_steps));
 }
 
 double ExplicitSolver::travel_limit() const {
@@ -305,11 +315,7 @@ void ExplicitSolver::compute_accelerations(double dt) {
         },
         material_);
   }
-  if (share_) {
-    double works[3] = {sums.stress_work, sums.stabilization_work, sums.viscous_work};
-    ranks_sum(works, 3);
-    sums.stress_work = works[0], sums.stabilization_work = works[1], sums.viscous_work = works[2];
-  }
+  ranks_sum({&sums.stress_work, &sums.stabilization_work, &sums.viscous_work});
   st_.ledger.internal += sums.stress_work + sums.stabilization_work;
   st_.ledger.stabilization += sums.stabilization_work;
   st_.ledger.viscous += sums.viscous_work;
@@ -339,11 +345,7 @@ void ExplicitSolver::compute_accelerations(double dt) {
     iy += f[1] * dt;
     iz += f[2] * dt;
   }
-  if (share_) {
-    double parts[4] = {work, ix, iy, iz};
-    ranks_sum(parts, 4);
-    work = parts[0], ix = parts[1], iy = parts[2], iz = parts[3];
-  }
+  ranks_sum({&work, &ix, &iy, &iz});
   st_.ledger.external += work;
   st_.ledger.external_impulse[0] += ix;
   st_.ledger.external_impulse[1] += iy;
@@ -378,7 +380,7 @@ void ExplicitSolver::compute_forces(double dt, double dt_next, bool internal) {
   for (const Wall& w : walls_)  // supports over part of the body, one wall after the other
     for (const std::int32_t j : w.particles)
       wall_total += wall_force(w, static_cast<std::size_t>(j), p_.f_ext.data() + 3 * static_cast<std::size_t>(j));
-  ranks_sum(&wall_total, 1);
+  ranks_sum({&wall_total});
   st_.wall_force_N = wall_total;
   if (st_.sphere) {
     st_.contact = sphere_contact_.compute(*st_.sphere, p_, dt, dt_next, p_.f_contact.data(), share_ ? &*share_ : nullptr);
@@ -438,7 +440,7 @@ void ExplicitSolver::book_contact_work(double h) {
     const double v1 = p_.v[k], v_half = v1 - 0.5 * h * p_.a[k], v0 = v_half - 0.5 * h * a0[k];
     work += 0.25 * h * (f0 * (v0 + v_half) + f1 * (v_half + v1));
   }
-  ranks_sum(&work, 1);
+  ranks_sum({&work});
   const RigidSphere& s = *st_.sphere;
   for (int d = 0; d < 3; ++d) {
     const double v1 = s.v[d], v_half = v1 - 0.5 * h * s.force[d] / s.mass_kg;
@@ -462,11 +464,7 @@ void ExplicitSolver::update_momentum_and_kinetic() {
     py += p_.mass[i] * v[1];
     pz += p_.mass[i] * v[2];
   }
-  if (share_) {
-    double parts[4] = {ke, px, py, pz};
-    ranks_sum(parts, 4);
-    ke = parts[0], px = parts[1], py = parts[2], pz = parts[3];
-  }
+  ranks_sum({&ke, &px, &py, &pz});
   if (st_.sphere) {
     const RigidSphere& s = *st_.sphere;
     st_.ledger.kinetic_sphere = s.kinetic_energy();
@@ -500,11 +498,7 @@ void ExplicitSolver::update_material_books() {
         }
       },
       material_);
-  if (share_) {
-    double parts[5] = {stored, plastic, crushing, opening, stab};
-    ranks_sum(parts, 5);
-    stored = parts[0], plastic = parts[1], crushing = parts[2], opening = parts[3], stab = parts[4];
-  }
+  ranks_sum({&stored, &plastic, &crushing, &opening, &stab});
   st_.ledger.material_stored = stored;
   st_.ledger.material_dissipated = st_.ledger.internal - st_.ledger.stabilization - stored;
   st_.ledger.plastic = plastic;

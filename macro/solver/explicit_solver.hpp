@@ -21,7 +21,6 @@
 // times the step just taken, the step is repeated from the saved state with the new stable step.
 // Nothing allocates inside steps once the neighbour counts have settled.
 #include <cstdint>
-#include <functional>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -214,9 +213,8 @@ class ExplicitSolver {
   const std::uint8_t* owned_flags() const { return share_ ? share_->owned.data() : nullptr; }
   // The ranks' minimum and sums (RankShare); the value itself in one process.
   double ranks_min(double value) const { return share_ ? share_->min(value) : value; }
-  void ranks_sum(double* values, int count) const {
-    if (share_) share_->sum(values, count);
-  }
+  // Each of the values replaced by its sum over the ranks (one exchange; nothing in one process).
+  void ranks_sum(std::initializer_list<double*> values) const;
   bool ranks_any(bool flag) const { return ranks_min(flag ? 0.0 : 1.0) == 0.0; }
   // The stable step, the one place solver.cfl applies: cfl times the smallest of the critical steps
   // given (the particles' from their wave speed and bulk viscosity over the stable length; the sphere
