@@ -8,6 +8,7 @@
 // numerical failure, the last good state in fields.h5 and DIR/diagnostic.json (exit code 1). Bad input:
 // one line naming the file, key and reason, exit code 2. See macro/README.md.
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,29 @@
 #include "uhpc/cli.hpp"
 #include "uhpc/errors.hpp"
 #include "uhpc/logging.hpp"
+#ifdef UHPC_WITH_MPI
+#include "distributed/mpi_session.hpp"
+#endif
+
+namespace {
+#ifdef UHPC_WITH_MPI
+using MaybeMpi = std::optional<uhpc::macro::distributed::MpiSession>;
+int rank_count(const MaybeMpi& mpi) { return mpi ? mpi->size() : 1; }
+int rank_of(const MaybeMpi& mpi) { return mpi ? mpi->rank() : 0; }
+#else
+struct MaybeMpi {};  // a build without MPI (UHPC_MPI=OFF): one process
+int rank_count(const MaybeMpi&) { return 1; }
+int rank_of(const MaybeMpi&) { return 0; }
+#endif
+}  // namespace
 
 int main(int argc, char** argv) {
+  // Started by mpirun or srun, the ranks share the run (distributed_shot.hpp); alone, it is one process
+  // and MPI is not started.
+  MaybeMpi mpi;
+#ifdef UHPC_WITH_MPI
+  if (uhpc::macro::distributed::started_by_mpi_launcher()) mpi.emplace(&argc, &argv);
+#endif
   CLI::App app{"3D explicit RKPM penetration run: a rigid sphere into a particle target (result.json, "
                "history.csv, fields.h5 + fields.xdmf).",
                "uhpc-macro"};
@@ -59,16 +81,40 @@ int main(int argc, char** argv) {
   restart_check->excludes(reuse);
   restart_check->excludes(reuse_check);
   uhpc::add_set_option(app, args.overrides);
-  return uhpc::run_main(app, [&] {
-    app.parse(argc, argv);
-    if (out.empty() && !args.inputs_hash) throw CLI::RequiredError("--out");
-    uhpc::init_logging("uhpc-macro", args.quiet ? uhpc::Verbosity::Quiet : uhpc::Verbosity::Normal);
-    args.out = out;
-    if (!(checkpoint_every_min >= 0.0 && std::isfinite(checkpoint_every_min)))
-      throw uhpc::InputError(fmt::format("--checkpoint-every-min {}: not a number of minutes >= 0 (0: none)",
-                                         checkpoint_every_min));
-    args.checkpoint_every_s = 60.0 * checkpoint_every_min;
-    uhpc::macro::run_macro(args);
-    return uhpc::kExitOk;
+  // Over several ranks, the failures every rank meets alike (the command line, the inputs, a failed step)
+  // are told by rank 0 alone: the others return quietly.
+  [[maybe_unused]] bool told_by_rank_0 = false;
+  const bool quiet_rank = rank_of(mpi) > 0;
+  const int code = uhpc::run_main(app, [&] {
+    try {
+      app.parse(argc, argv);
+      if (out.empty() && !args.inputs_hash) throw CLI::RequiredError("--out");
+      uhpc::init_logging("uhpc-macro", args.quiet ? uhpc::Verbosity::Quiet : uhpc::Verbosity::Normal);
+      args.out = out;
+      if (!(checkpoint_every_min >= 0.0 && std::isfinite(checkpoint_every_min)))
+        throw uhpc::InputError(fmt::format("--checkpoint-every-min {}: not a number of minutes >= 0 (0: none)",
+                                           checkpoint_every_min));
+      args.checkpoint_every_s = 60.0 * checkpoint_every_min;
+      uhpc::macro::run_macro(args);
+      return uhpc::kExitOk;
+    } catch (const CLI::ParseError& e) {
+      if (!quiet_rank) throw;
+      told_by_rank_0 = true;
+      return e.get_exit_code() == 0 ? uhpc::kExitOk : uhpc::kExitBadInput;  // --help, --version: 0
+    } catch (const uhpc::InputError&) {
+      if (!quiet_rank) throw;
+      told_by_rank_0 = true;
+      return uhpc::kExitBadInput;
+    } catch (const uhpc::NumericalError&) {
+      if (!quiet_rank) throw;
+      told_by_rank_0 = true;
+      return uhpc::kExitNumerical;
+    }
   });
+#ifdef UHPC_WITH_MPI
+  // Rank 0, or a rank that stops alone (an internal error), ends the job with its exit code: the others
+  // may be waiting for it in the run.
+  if (code != uhpc::kExitOk && rank_count(mpi) > 1 && !told_by_rank_0) MPI_Abort(MPI_COMM_WORLD, code);
+#endif
+  return code;
 }

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <ostream>
 
@@ -14,10 +15,12 @@
 #include "case_config.hpp"
 #include "case_setup.hpp"
 #include "checkpoint.hpp"
+#include "distributed_shot.hpp"
 #include "material_factory.hpp"
 #include "run_inputs.hpp"
 #include "run_outputs.hpp"
 #include "run_warnings.hpp"
+#include "shot_stepper.hpp"
 #include "uhpc/atomic_file.hpp"
 #include "uhpc/config.hpp"
 #include "uhpc/errors.hpp"
@@ -47,9 +50,11 @@ nlohmann::json beyond_domain_json(const Particles& p, const Region& domain) {
   return {{"particles", count}, {"mass_kg", mass}, {"kinetic_J", kinetic}};
 }
 
-nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact, const BalanceTracker& balance,
-                           const std::string& model, double wall_s, const Provenance& provenance,
-                           std::size_t field_steps) {
+// s: the run's state (time, sphere, books); whole: the whole body's particles (the same solver in one
+// process, ShotStepper::whole in a distributed run).
+nlohmann::json result_json(const ExplicitSolver& s, const ExplicitSolver& whole, std::size_t fragment_particles,
+                           const ImpactTracker& impact, const BalanceTracker& balance, const std::string& model,
+                           double wall_s, const Provenance& provenance, std::size_t field_steps) {
   const double vi = impact.impact_velocity_m_s, vf = s.sphere().v[2];
   nlohmann::json r = {
       {"impact_velocity_m_s", vi},
@@ -67,22 +72,23 @@ nlohmann::json result_json(const ExplicitSolver& s, const ImpactTracker& impact,
       {"final_sphere_position_m", s.sphere().x},
       {"end_time_s", s.time()},
       {"material_model", model},
-      {"particle_count", s.particles().n},
+      {"particle_count", whole.particles().n},
       {"steps", s.steps()},
       {"step_repeats", s.step_repeats()},
       {"field_outputs", field_steps},
       {"wall_time_s", wall_s},
       {"peak_memory_MB", peak_memory_MiB()},  // (MiB; the key predates the unit)
-      {"particle_steps_per_s", wall_s > 0 ? static_cast<double>(s.particles().n) * static_cast<double>(s.steps()) / wall_s : 0.0},
+      {"particle_steps_per_s",
+       wall_s > 0 ? static_cast<double>(whole.particles().n) * static_cast<double>(s.steps()) / wall_s : 0.0},
       // Lazy RK rows (solver.shape_reuse_tolerance): the fraction of rows kept over the run (0 without).
       {"shape_rows_kept_fraction",
        s.shapes().rows_kept + s.shapes().rows_built > 0
            ? static_cast<double>(s.shapes().rows_kept) / static_cast<double>(s.shapes().rows_kept + s.shapes().rows_built)
            : 0.0},
       // Particles moving as rigid fragments at the end (ShapeCache::fragment, solver.fragment_rcond).
-      {"fragment_particles", s.shapes().fragments()},
+      {"fragment_particles", fragment_particles},
       // Ejecta in flight beyond the domain box at the end (SolverOptions::domain).
-      {"beyond_domain", beyond_domain_json(s.particles(), s.domain())},
+      {"beyond_domain", beyond_domain_json(whole.particles(), s.domain())},
       {"energy",
        {{"initial_kinetic_J", s.ledger().kinetic_initial},
         {"final_kinetic_J", s.ledger().kinetic},
@@ -191,6 +197,49 @@ bool reuse_finished_run(const fs::path& result, const RunInputs& inputs) {
   return true;
 }
 
+// What a run over several ranks cannot do yet (distributed_shot.hpp) is refused before it starts, with
+// the key or option to change.
+void refuse_beyond_distributed(const Config& cfg, const CaseSettings& settings, const MacroRunArgs& args, int ranks) {
+  const std::string on_ranks = fmt::format("not distributed yet: run on one rank, not {}", ranks);
+  if (settings.solver.shape_reuse_tolerance > 0.0)
+    cfg.section("solver").fail("shape_reuse_tolerance",
+                               fmt::format("lazy RK rows are {} (or with --set solver.shape_reuse_tolerance=0)", on_ranks));
+  if (settings.run.checkpoint_interval_steps > 0)
+    cfg.section("run").fail("checkpoint_interval_steps", "checkpoints are " + on_ranks);
+  if (settings.run.fields == FieldSet::Full) cfg.section("run").fail("fields", "the full field set is " + on_ranks);
+  if (settings.solver.strain_configuration == StrainConfiguration::Midpoint)
+    cfg.section("solver").fail("strain_configuration", "the midpoint configuration is " + on_ranks);
+  if (settings.projectile.contact.model == SphereContactModel::Penalty)
+    cfg.section("projectile").section("contact").fail("model", "the penalty contact is " + on_ranks);
+  if (args.restart || args.checkpoint_every_s > 0.0)
+    throw InputError(fmt::format("{}: checkpoints are {}", args.restart ? "--restart" : "--checkpoint-every-min", on_ranks));
+}
+
+// The case's solver in one process (resumed from `resumed` when given) or its parts over the ranks.
+std::unique_ptr<ShotStepper> make_shot(const CaseSettings& settings, const ParticleBody& body, const MaterialSet& law,
+                                       int ranks, std::optional<ExplicitSolver>& one_process,
+                                       const std::optional<RunCheckpoint>& resumed, const fs::path& checkpoint_file) {
+#ifdef UHPC_WITH_MPI
+  if (ranks > 1) {
+    try {
+      return make_distributed_shot(settings, body, law);
+    } catch (const std::invalid_argument& e) {  // what the rank solvers refuse (ExplicitSolver::set_rank_share)
+      throw InputError(fmt::format("{} (run on one rank, not {})", e.what(), ranks));
+    }
+  }
+#endif
+  (void)ranks;
+  one_process.emplace(make_solver(settings, body, law));
+  if (resumed) {
+    try {
+      one_process->resume(resumed->solver);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(checkpoint_file.string() + ": does not fit this case: " + e.what());
+    }
+  }
+  return std::make_unique<OneProcessShot>(*one_process);
+}
+
 }  // namespace
 
 void run_macro(const MacroRunArgs& args) {
@@ -203,99 +252,115 @@ void run_macro(const MacroRunArgs& args) {
   const ParticleBody body = make_target_body(settings.target);
   MaterialChoice material = make_material(cfg.section("material"), body.size(), sdel);
   cfg.finish();
+  const int ranks = world_ranks();  // every rank reads the inputs and decides alike
+  const bool writer = world_rank() == 0;
+  if (!writer) spdlog::set_level(spdlog::level::err);  // the warnings once, from the rank that writes
   if (sdel && !material.uses_sdel)
     spdlog::info("the '{}' law does not use the SDEL: {} was validated and is ignored", material.model, args.sdel_path);
 
   const RunInputs inputs = run_inputs(cfg, args.config_path, args.overrides, args.sdel_path, material.inputs);
   if (args.inputs_hash) {
-    std::cout << inputs.hash << '\n' << inputs.former_hash << std::endl;
+    if (writer) std::cout << inputs.hash << '\n' << inputs.former_hash << std::endl;
     return;
   }
   if (args.reuse_check) {
-    std::cout << (reuse_finished_run(args.out / "result.json", inputs) ? "kept" : "run") << std::endl;
+    const bool kept = reuse_finished_run(args.out / "result.json", inputs);
+    if (writer) std::cout << (kept ? "kept" : "run") << std::endl;
     return;
   }
   const fs::path checkpoint_file = args.out / "checkpoint.h5";
   if (args.restart_check) {
     const bool resumable = fs::exists(checkpoint_file) && written_by_this_build(checkpoint_file);
     if (resumable) check_checkpoint_values(read_checkpoint(checkpoint_file, inputs.restart_hash), settings.run, checkpoint_file);
-    std::cout << (resumable ? "restart" : "start") << std::endl;
+    if (writer) std::cout << (resumable ? "restart" : "start") << std::endl;
     return;
   }
   if (args.reuse && reuse_finished_run(args.out / "result.json", inputs)) return;
+  if (ranks > 1) refuse_beyond_distributed(cfg, settings, args, ranks);
   std::optional<RunCheckpoint> resumed;
   if (args.restart) {
     resumed = read_checkpoint(checkpoint_file, inputs.restart_hash);
     check_checkpoint_values(*resumed, settings.run, checkpoint_file);
   }
-  ExplicitSolver solver = make_solver(settings, body, std::move(material.set));
-  if (resumed) {
-    try {
-      solver.resume(resumed->solver);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(checkpoint_file.string() + ": does not fit this case: " + e.what());
-    }
-  }
-  refuse_beyond_budget(cfg, settings, solver.dt(), material.wave_speed_inputs);
+  std::optional<ExplicitSolver> one_process;  // the solver, when the run is on one rank
+  const std::unique_ptr<ShotStepper> shot =
+      make_shot(settings, body, material.set, ranks, one_process, resumed, checkpoint_file);
+  // (A distributed run replaces its rank's solver at a halo rebuild: shot->solver() is asked afresh.)
+  refuse_beyond_budget(cfg, settings, shot->solver().dt(), material.wave_speed_inputs);
   // Every check has passed: only now are the previous run's outputs replaced, by this run alone (a second
   // run given the same --out stops here with exit 2 naming this one).
-  const OutputLock lock = lock_output_directory(args.out, "uhpc-macro");
-  for (const char* name : {"result.json", "diagnostic.json", "history.csv", "config.json", "checkpoint.h5", "fields.h5",
-                           "fields.xdmf", "sphere.h5", "sphere.xdmf"})
-    require_file_path(args.out / name);
-  for (const char* stale : {"result.json", "diagnostic.json"}) fs::remove(args.out / stale);
-  if (!resumed) {
-    for (const char* stale : {"history.csv", "config.json", "checkpoint.h5"}) fs::remove(args.out / stale);
+  std::optional<OutputLock> lock;
+  if (writer) {
+    lock.emplace(lock_output_directory(args.out, "uhpc-macro"));
+    for (const char* name : {"result.json", "diagnostic.json", "history.csv", "config.json", "checkpoint.h5", "fields.h5",
+                             "fields.xdmf", "sphere.h5", "sphere.xdmf"})
+      require_file_path(args.out / name);
+    for (const char* stale : {"result.json", "diagnostic.json"}) fs::remove(args.out / stale);
+    if (!resumed) {
+      for (const char* stale : {"history.csv", "config.json", "checkpoint.h5"}) fs::remove(args.out / stale);
+    }
+    write_text_atomic(args.out / "config.json", inputs.record.dump(2) + "\n");
   }
-  write_text_atomic(args.out / "config.json", inputs.record.dump(2) + "\n");
   const Provenance provenance = Provenance::make("uhpc-macro", inputs.hash);
   if (resumed)
-    spdlog::info("restarting from {} at step {}, t = {:.6e} s", checkpoint_file.string(), solver.steps(), solver.time());
-  spdlog::info("{} particles, material '{}', sphere {} kg at {} m/s, first step {:.3e} s, end time {:.3e} s",
-               solver.particles().n, material.model, settings.projectile.mass_kg, settings.projectile.velocity_m_s,
-               solver.dt(), settings.run.end_time_s);
+    spdlog::info("restarting from {} at step {}, t = {:.6e} s", checkpoint_file.string(), shot->solver().steps(),
+                 shot->solver().time());
+  spdlog::info("{} particles{}, material '{}', sphere {} kg at {} m/s, first step {:.3e} s, end time {:.3e} s",
+               body.size(), ranks > 1 ? fmt::format(" on {} ranks", ranks) : "", material.model,
+               settings.projectile.mass_kg, settings.projectile.velocity_m_s, shot->solver().dt(), settings.run.end_time_s);
   std::vector<RunWarning> warnings = warnings_before_run(settings);
-  for (RunWarning& w : warnings_for_material(solver.material(), settings))
+  for (RunWarning& w : warnings_for_material(shot->solver().material(), settings))
     warnings.push_back(std::move(w));
   const WallTimeEstimate estimate =
-      estimate_wall_time(solver.particles().n, settings.run.end_time_s - solver.time(), solver.dt(), max_threads());
+      estimate_wall_time(body.size(), settings.run.end_time_s - shot->solver().time(), shot->solver().dt(),
+                         ranks * max_threads());
   spdlog::info("{}", estimate.message);
   if (estimate.seconds > kLongRunSeconds) warnings.push_back({"long_run", estimate.message});
   for (const RunWarning& w : warnings) spdlog::warn("{}", w.message);
 
-  std::optional<FieldOutput> field_output;
+  // The files are the writing rank's; every rank calls write_fields, which gathers the particles there.
+  std::optional<FieldOutput> fields;
   std::optional<FullFields> full;
   if (settings.run.fields == FieldSet::Full) full = FullFields{&body.position};
-  if (resumed) field_output.emplace(args.out, solver.material(), resumed->fields, full);
-  else field_output.emplace(args.out, solver.material(), full);
-  FieldOutput& fields = *field_output;
-  fields.write_provenance(provenance);
+  if (writer && resumed) fields.emplace(args.out, shot->solver().material(), resumed->fields, full);
+  else if (writer) fields.emplace(args.out, shot->solver().material(), full);
+  if (fields) fields->write_provenance(provenance);
+  const auto write_fields = [&] {
+    const ExplicitSolver* whole = shot->whole();
+    if (fields) fields->write(shot->solver(), *whole);
+    return whole;
+  };
   History history = resumed ? History(resumed->history_text, resumed->history_rows) : History();
+  const auto save_history = [&] {
+    if (writer) history.save(args.out / "history.csv");
+  };
   ImpactTracker impact;
   impact.thickness_m = settings.target.thickness_m();
   impact.impact_velocity_m_s = settings.projectile.velocity_m_s;
   impact.flight_direction = flight_direction(settings.projectile);
-  for (const double m : solver.particles().mass) impact.target_mass_kg += m;
+  impact.target_mass_kg = shot->target_mass_kg();
   BalanceTracker balance;
   if (resumed) {
     impact = resumed->impact;
     balance = resumed->balance;
   } else {
-    fields.write(solver);
-    history.add(solver);
+    write_fields();
+    history.add(shot->solver());
   }
   // The checkpoints of run.checkpoint_interval_steps and of the end drop the shape cache where they are
   // written, so the run that writes them and a run resumed from one rebuild every row from the same state
   // (ExplicitSolver::resume). The wall clock's (--checkpoint-every-min) keep it: when they fire depends on
-  // the machine, and the run's numbers must not.
+  // the machine, and the run's numbers must not. One process only (refuse_beyond_distributed).
   enum class ShapeRows : bool { Keep, Drop };
   const auto write_checkpoint_now = [&](ShapeRows rows) {
+    ExplicitSolver& solver = *one_process;
     if (rows == ShapeRows::Drop) solver.drop_shape_cache();
     history.save(args.out / "history.csv");
     write_checkpoint(checkpoint_file, {solver.checkpoint(), history.text(), history.rows(), impact, balance,
-                                       fields.state(), inputs.restart_hash, checkpoint_build()});
+                                       fields->state(), inputs.restart_hash, checkpoint_build()});
   };
   const auto finished = [&] {
+    const ExplicitSolver& solver = shot->solver();
     const bool stop_after_outcome = impact.decided() && settings.run.stop_after_outcome_s >= 0 &&
                                     solver.time() >= impact.outcome_time_s + settings.run.stop_after_outcome_s;
     return solver.time() >= settings.run.end_time_s || stop_after_outcome;
@@ -303,12 +368,12 @@ void run_macro(const MacroRunArgs& args) {
 
   // Progress over simulated time, counted in nanoseconds; the step rate goes into the log lines.
   const auto total_ns = static_cast<std::uint64_t>(std::llround(settings.run.end_time_s * 1e9));
-  std::ostream quiet_sink(nullptr);  // -q: no progress line either
+  std::ostream quiet_sink(nullptr);  // -q (and the ranks that do not write): no progress line either
   Progress progress("uhpc-macro simulated", total_ns,
-                    ProgressOptions{args.quiet ? &quiet_sink : nullptr, -1, 10, 0.1, "ns"});
+                    ProgressOptions{args.quiet || !writer ? &quiet_sink : nullptr, -1, 10, 0.1, "ns"});
   std::uint64_t done_ns = 0;
   if (resumed) {
-    done_ns = static_cast<std::uint64_t>(std::llround(std::fmin(solver.time(), settings.run.end_time_s) * 1e9));
+    done_ns = static_cast<std::uint64_t>(std::llround(std::fmin(shot->solver().time(), settings.run.end_time_s) * 1e9));
     progress.advance(done_ns);
   }
   const auto start = std::chrono::steady_clock::now();
@@ -316,24 +381,26 @@ void run_macro(const MacroRunArgs& args) {
   double last_checkpoint_s = 0.0;  // wall time of the last checkpoint (the run's start before the first)
 
   while (!finished()) {
-    if (!solver.step()) {
+    if (!shot->step()) {
       // The solver is back in the last good state: keep it, say what failed, and stop.
       progress.finish();
-      fields.write(solver);
-      history.save(args.out / "history.csv");
-      const FailureReport& f = solver.failure();
-      write_text_atomic(args.out / "diagnostic.json", diagnostic_json(solver, f).dump(2) + "\n");
+      write_fields();
+      save_history();
+      const FailureReport f = shot->failure();
+      const ExplicitSolver& solver = shot->solver();
+      if (writer) write_text_atomic(args.out / "diagnostic.json", diagnostic_json(solver, f).dump(2) + "\n");
       throw NumericalError(fmt::format("{} at step {} (t = {:.6e} s, particle {}); last good state at t = {:.6e} s "
                                        "written to {}, diagnostic in {}",
                                        to_string(f.kind), f.step, f.time_s + f.dt_s, f.particle, solver.time(),
                                        (args.out / "fields.h5").string(), (args.out / "diagnostic.json").string()));
     }
+    const ExplicitSolver& solver = shot->solver();
     history.add(solver);
     balance.update(solver);
     impact.update(solver, balance.worst_energy);
     if (solver.steps() % settings.run.output_interval_steps == 0) {
-      fields.write(solver);
-      history.save(args.out / "history.csv");  // a killed run keeps its history up to here
+      write_fields();
+      save_history();  // a killed run keeps its history up to here
       spdlog::info("step {}, t = {:.3f} us, {:.1f} steps/s, sphere z = {:.3f} mm, v_z = {:.2f} m/s, {} in contact",
                    solver.steps(), solver.time() * 1e6, solver.steps() / elapsed(), solver.sphere().x[2] * 1e3,
                    solver.sphere().v[2], solver.contact().particles_in_contact);
@@ -355,19 +422,25 @@ void run_macro(const MacroRunArgs& args) {
     }
   }
   progress.finish();
+  const ExplicitSolver& solver = shot->solver();
   if (!impact.decided())
     spdlog::warn("outcome undecided: the sphere is still moving in the target at the end time ({:.1f} us, v_z = {:.2f} "
-                 "m/s); run.end_time_s is too short to decide this shot",
-                 solver.time() * 1e6, solver.sphere().v[2]);
+                 "m/s); run.end_time_s is too short to decide this shot{}",
+                 solver.time() * 1e6, solver.sphere().v[2],
+                 ranks > 1 ? " (a run on several ranks keeps no checkpoint to go on from)" : "");
   const double wall = elapsed();
-  fields.write(solver);
-  history.save(args.out / "history.csv");
-  nlohmann::json result = result_json(solver, impact, balance, material.model, wall, provenance, fields.steps_written());
+  const ExplicitSolver* whole = write_fields();
+  const std::size_t fragments = shot->fragment_particles();
+  if (!writer) return;
+  save_history();
+  nlohmann::json result =
+      result_json(solver, *whole, fragments, impact, balance, material.model, wall, provenance, fields->steps_written());
+  result["ranks"] = ranks;
   result["inputs"] = inputs_summary(inputs);
   const Vec3 flight = flight_direction(settings.projectile);
-  const ShotOnPanel shot{settings.target.thickness_m(), settings.projectile.offset_m, flight[0] / flight[2],
-                         settings.projectile.radius_m, solver.sphere().v[2], impact.perforated()};
-  result["panel"] = panel_json(panel_damage(solver.particles(), body.position, shot));
+  const ShotOnPanel shot_on_panel{settings.target.thickness_m(), settings.projectile.offset_m, flight[0] / flight[2],
+                                  settings.projectile.radius_m, solver.sphere().v[2], impact.perforated()};
+  result["panel"] = panel_json(panel_damage(whole->particles(), body.position, shot_on_panel));
   for (RunWarning& w : warnings_after_run(solver.ledger())) {
     spdlog::warn("{}", w.message);
     warnings.push_back(std::move(w));
@@ -376,7 +449,7 @@ void run_macro(const MacroRunArgs& args) {
   // A decided run is complete: its results replace the checkpoint. An undecided one keeps its last state
   // as one, so that --restart with a later run.end_time_s carries it on instead of starting again; it is
   // written first, so that a result.json on disk always means a finished run.
-  if (!impact.decided()) write_checkpoint_now(ShapeRows::Drop);
+  if (!impact.decided() && one_process) write_checkpoint_now(ShapeRows::Drop);
   write_text_atomic(args.out / "result.json", result.dump(2) + "\n");
   if (impact.decided()) fs::remove(checkpoint_file);
   spdlog::info("{} steps ({} repeated) in {:.2f} s, {:.3g} particle-steps/s; sphere v_z {:.2f} m/s ({}); energy "

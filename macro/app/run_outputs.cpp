@@ -33,8 +33,8 @@ ParticleFieldWriter FieldOutput::resumed_writer(const std::filesystem::path& dir
   }
 }
 
-void FieldOutput::write(const ExplicitSolver& solver) {
-  if (solver.time() <= last_time_) return;
+void FieldOutput::write(const ExplicitSolver& run, const ExplicitSolver& solver) {
+  if (run.time() <= last_time_) return;
   const Particles& p = solver.particles();
   pressure_.resize(p.n);
   equivalent_.resize(p.n);
@@ -74,11 +74,11 @@ void FieldOutput::write(const ExplicitSolver& solver) {
     fields.push_back({"particle_id", "1", 1, id_.data()});
     fields.push_back({"reference_position", "m", 3, full_->reference_position->data()});
   }
-  writer_.write_step(solver.time(), p.n, 3, p.x.data(), fields);
-  const RigidSphere& sphere = solver.sphere();
-  sphere_writer_.write_step(solver.time(), 1, 3, sphere.x.data(),
+  writer_.write_step(run.time(), p.n, 3, p.x.data(), fields);
+  const RigidSphere& sphere = run.sphere();
+  sphere_writer_.write_step(run.time(), 1, 3, sphere.x.data(),
                             {{"radius", "m", 1, &sphere.radius_m}, {"velocity", "m/s", 3, sphere.v.data()}});
-  last_time_ = solver.time();
+  last_time_ = run.time();
 }
 
 History::History() {

@@ -47,7 +47,10 @@ class FieldOutput {
               std::optional<FullFields> full = {});
   FieldOutputState state() const { return {writer_.steps(), sphere_writer_.steps(), last_time_}; }
   // Appends the solver's current state (skipped when a state of the same time was written last).
-  void write(const ExplicitSolver& solver);
+  void write(const ExplicitSolver& solver) { write(solver, solver); }
+  // The same with the particles from `whole` (a distributed run's, ShotStepper::whole) and the time and
+  // sphere from `run`.
+  void write(const ExplicitSolver& run, const ExplicitSolver& whole);
   void write_provenance(const Provenance& provenance) {
     writer_.write_provenance(provenance);
     sphere_writer_.write_provenance(provenance);

@@ -1,8 +1,15 @@
 #include "distributed/mpi_session.hpp"
 
+#include <cstdlib>
 #include <stdexcept>
 
 namespace uhpc::macro::distributed {
+
+bool started_by_mpi_launcher() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    if (std::getenv(name) != nullptr) return true;
+  return false;
+}
 
 MpiSession::MpiSession(int* argc, char*** argv) {
   int provided = MPI_THREAD_SINGLE;

@@ -6,6 +6,10 @@
 
 namespace uhpc::macro::distributed {
 
+// Whether a launcher started this process as one of a job's ranks (mpirun or mpiexec of Open MPI or
+// MPICH, srun with PMI or PMIx): what it leaves in the environment before MPI starts.
+bool started_by_mpi_launcher();
+
 class MpiSession {
  public:
   MpiSession(int* argc, char*** argv);

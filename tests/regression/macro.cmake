@@ -146,3 +146,18 @@ add_test(NAME regression.pipelines_sensitivity
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/check_sensitivity.py --source ${PROJECT_SOURCE_DIR}
                  --build ${CMAKE_BINARY_DIR} --out ${UHPC_REGRESSION_OUT}/pipelines_sensitivity)
 set_tests_properties(regression.pipelines_sensitivity PROPERTIES LABELS regression TIMEOUT 300)
+# uhpc-macro under mpirun (issue 49): a small disc's shot at 2-4 ranks against the same shot in one
+# process: the residual velocity, the sphere and every field bit for bit, the books to 1e-10, and a case
+# the ranks cannot run yet refused with exit 2 (about 5 s each). Open MPI's settings as in macro_tests.cmake;
+# the distribution's python3 for its h5py.
+if(UHPC_MPI)
+  foreach(np 2 3 4)
+    add_test(NAME verification.MacroMpiShot.ranks_${np}
+             COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/check_mpi_shot.py --macro $<TARGET_FILE:uhpc-macro>
+                     --mpirun "${UHPC_MPIEXEC} --oversubscribe -np" --ranks ${np}
+                     --case ${PROJECT_SOURCE_DIR}/data/macro_disc_afc_coarse.json
+                     --out ${UHPC_REGRESSION_OUT}/mpi_shot_${np})
+    set_tests_properties(verification.MacroMpiShot.ranks_${np} PROPERTIES LABELS verification TIMEOUT 300
+                         PROCESSORS ${np} ENVIRONMENT "${_uhpc_mpi_env}")
+  endforeach()
+endif()

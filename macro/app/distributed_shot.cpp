@@ -1,0 +1,127 @@
+#include "distributed_shot.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include <mpi.h>
+
+#include "case_setup.hpp"
+#include "distributed/distributed_run.hpp"
+#include "distributed/gather.hpp"
+
+namespace uhpc::macro {
+
+namespace {
+
+using distributed::DistributedRun;
+
+double all_min(double value) {
+  MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+  return value;
+}
+
+std::vector<std::uint32_t> all_ids(std::size_t n) {
+  std::vector<std::uint32_t> ids(n);
+  for (std::size_t i = 0; i < n; ++i) ids[i] = static_cast<std::uint32_t>(i);
+  return ids;
+}
+
+class DistributedShot final : public ShotStepper {
+ public:
+  DistributedShot(const CaseSettings& settings, const ParticleBody& body, const MaterialSet& law)
+      : run_(MPI_COMM_WORLD, body.size(),
+             [&settings, &body, &law](const std::vector<std::uint32_t>& ids) {
+               return make_part_solver(settings, body, law, ids);
+             }) {
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    if (rank_ == 0) whole_.emplace(make_part_solver(settings, body, law, all_ids(body.size())));
+  }
+
+  bool step() override { return run_.step(); }
+  const ExplicitSolver& solver() const override { return run_.solver(); }
+  bool writes() const override { return rank_ == 0; }
+
+  const ExplicitSolver* whole() override {
+    const distributed::ParticleSet all = distributed::gather(run_.owned_records(), MPI_COMM_WORLD, 0);
+    if (rank_ != 0) return nullptr;
+    for (std::size_t k = 0; k < all.size(); ++k) whole_->read_particle(all.id[k], all.at(k));
+    return &*whole_;
+  }
+
+  // Every rank has the agreed kind, step and time. The particle is the one one process would name: the
+  // first it meets (the smallest global id), or for an energy balance failure the most kinetic (mass
+  // |v|^2, the first of equals); the lowest rank that named it describes it.
+  FailureReport failure() override {
+    constexpr double kNone = std::numeric_limits<double>::infinity();
+    FailureReport f = run_.solver().failure();
+    const double id = f.particle >= 0 ? static_cast<double>(f.particle) : kNone;
+    double key = id;
+    if (f.particle >= 0 && f.kind == StepFailure::EnergyBalance) {
+      const std::vector<std::uint32_t>& ids = run_.local_ids();  // ascending
+      const auto at = std::lower_bound(ids.begin(), ids.end(), static_cast<std::uint32_t>(f.particle)) - ids.begin();
+      key = -run_.solver().particles().mass[static_cast<std::size_t>(at)] *
+            (f.v[0] * f.v[0] + f.v[1] * f.v[1] + f.v[2] * f.v[2]);
+    }
+    const double best_key = all_min(key);
+    const double best_id = all_min(key == best_key ? id : kNone);
+    if (best_id == kNone) return f;  // the sphere's, or no particle's: the same on every rank
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    const int describer = static_cast<int>(all_min(id == best_id && key == best_key ? rank_ : size));
+    double state[8] = {f.x[0], f.x[1], f.x[2], f.v[0], f.v[1], f.v[2], f.volume_m3, f.volume0_m3};
+    MPI_Bcast(state, 8, MPI_DOUBLE, describer, MPI_COMM_WORLD);
+    f.particle = static_cast<std::int64_t>(best_id);
+    f.x = {state[0], state[1], state[2]};
+    f.v = {state[3], state[4], state[5]};
+    f.volume_m3 = state[6];
+    f.volume0_m3 = state[7];
+    return f;
+  }
+
+  std::size_t fragment_particles() override {
+    const ExplicitSolver& s = run_.solver();
+    double count = 0.0;  // exact in a double
+    for (std::size_t i = 0; i < run_.owned().size(); ++i) count += run_.owned()[i] && s.shapes().fragment(i) ? 1.0 : 0.0;
+    MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    return static_cast<std::size_t>(count);
+  }
+
+  double target_mass_kg() override {  // summed as one process sums it, so that the outcome is decided alike
+    double mass = 0.0;
+    if (rank_ == 0)
+      for (const double m : whole_->particles().mass) mass += m;
+    MPI_Bcast(&mass, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    return mass;
+  }
+
+ private:
+  DistributedRun run_;
+  int rank_ = 0;
+  std::optional<ExplicitSolver> whole_;  // rank 0: the whole body, for the outputs
+};
+
+}  // namespace
+
+int world_ranks() {
+  int started = 0, size = 1;
+  MPI_Initialized(&started);
+  if (started) MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
+int world_rank() {
+  int started = 0, rank = 0;
+  MPI_Initialized(&started);
+  if (started) MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
+std::unique_ptr<ShotStepper> make_distributed_shot(const CaseSettings& settings, const ParticleBody& body,
+                                                   const MaterialSet& law) {
+  return std::make_unique<DistributedShot>(settings, body, law);
+}
+
+}  // namespace uhpc::macro

@@ -1,0 +1,30 @@
+#pragma once
+// uhpc-macro over the ranks of MPI_COMM_WORLD (issue 49): the case's rank solvers (make_part_solver)
+// stepped by a DistributedRun behind the run loop's ShotStepper. Rank 0 writes every file: at each
+// output it gathers the owned particles' records into a solver of the whole body (never stepped), from
+// which the one-process outputs are written unchanged.
+// Not yet (macro_run.cpp refuses them with the key to change): lazy rows, checkpoints and --restart, the
+// full field set; and rank 0 holds the whole body's particles for the outputs (no parallel HDF5 yet).
+#include <memory>
+
+#include "case_config.hpp"
+#include "material_factory.hpp"
+#include "shot_stepper.hpp"
+
+namespace uhpc::macro {
+
+#ifdef UHPC_WITH_MPI
+// The ranks of MPI_COMM_WORLD and this one's place: 1 and 0 when MPI was not started (uhpc-macro
+// without a launcher).
+int world_ranks();
+int world_rank();
+
+// The case over the ranks (collective). `settings`, `body` and `law` must outlive the result.
+std::unique_ptr<ShotStepper> make_distributed_shot(const CaseSettings& settings, const ParticleBody& body,
+                                                   const MaterialSet& law);
+#else
+inline int world_ranks() { return 1; }  // a build without MPI (UHPC_MPI=OFF) runs on one
+inline int world_rank() { return 0; }
+#endif
+
+}  // namespace uhpc::macro

@@ -1,0 +1,53 @@
+#pragma once
+// What uhpc-macro's run loop (macro_run.cpp) steps: the case's solver in one process (OneProcessShot),
+// or the ranks' parts of it under mpirun or srun (distributed_shot.hpp). The run's time, step, sphere,
+// contact and books are the same on every rank and come from solver(); the particles' own fields, for
+// the outputs, from whole() on the rank that writes. The calls marked collective are made by every rank
+// in the same order.
+#include <cstddef>
+
+#include "solver/explicit_solver.hpp"
+
+namespace uhpc::macro {
+
+class ShotStepper {
+ public:
+  virtual ~ShotStepper() = default;
+  // One step (collective); false when it failed (the run is back at its last good state).
+  virtual bool step() = 0;
+  // The run's state. A distributed run replaces its rank's solver when it rebuilds its halo: do not keep
+  // the reference across a step.
+  virtual const ExplicitSolver& solver() const = 0;
+  // Whether this rank writes the run's files (one rank does).
+  virtual bool writes() const = 0;
+  // The whole body's particles as they are now, in the body's order (collective): on the rank that
+  // writes; nullptr on the others. Its time, sphere and books are not kept: take those from solver().
+  virtual const ExplicitSolver* whole() = 0;
+  // The last failed step, named as one process names it (collective).
+  virtual FailureReport failure() = 0;
+  // The particles moving as rigid fragments (ShapeCache::fragment) and the whole target's mass, summed
+  // in the body's order (collective).
+  virtual std::size_t fragment_particles() = 0;
+  virtual double target_mass_kg() = 0;
+};
+
+class OneProcessShot final : public ShotStepper {
+ public:
+  explicit OneProcessShot(ExplicitSolver& solver) : solver_(solver) {}
+  bool step() override { return solver_.step(); }
+  const ExplicitSolver& solver() const override { return solver_; }
+  bool writes() const override { return true; }
+  const ExplicitSolver* whole() override { return &solver_; }
+  FailureReport failure() override { return solver_.failure(); }
+  std::size_t fragment_particles() override { return solver_.shapes().fragments(); }
+  double target_mass_kg() override {
+    double mass = 0.0;
+    for (const double m : solver_.particles().mass) mass += m;
+    return mass;
+  }
+
+ private:
+  ExplicitSolver& solver_;
+};
+
+}  // namespace uhpc::macro
