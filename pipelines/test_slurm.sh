@@ -5,6 +5,8 @@
 #   - three coarse shots (the shots targets, data/macro_disc_afc_coarse.json) under salloc with
 #     LAUNCH="srun -N1 -n1 -c1 --exclusive", against the same targets with LAUNCH empty;
 #   - a short ballistic-limit bisection (ballistic_limit.py --launch) the same way;
+#   - one shot over 2 ranks, srun --mpi=pmix -n 2 uhpc-macro, against the same shot in one process
+#     (tests/regression/check_mpi_shot.py);
 #   - a 2 sizes x 2 cells microcell ensemble, one srun step per cell (micro-ensemble-cells) under sbatch,
 #     against the single process of micro-ensemble; then the per-cell run again, which must reload every
 #     cell and rebuild the same ensemble.h5.
@@ -136,6 +138,14 @@ say "Slurm $(sinfo -V | awk '{print $2}') up on $HOST: $(sinfo -h -o '%P %D node
 steps() { grep -c "launch task StepId=" "$S/log/slurmd.log" || true; }
 MAKE_ARGS=(-C "$ROOT/pipelines" -o build -o configure -o macro-tools -o micro-tools BUILD="$BUILD" MICRO_CELLS=)
 cd "$S"
+
+# --- one shot over two ranks: srun -n 2 (PMIx) against the same shot in one process -----------------
+t0=$SECONDS
+$PY "$ROOT/tests/regression/check_mpi_shot.py" --macro "$BUILD/macro/uhpc-macro" --ranks 2 \
+  --mpirun "srun --mpi=pmix -N1 -c1 -n" --case "$ROOT/data/macro_disc_afc_coarse.json" --out "$S/mpi_shot" \
+  > "$S/log/mpi_shot.log" 2>&1 ||
+  fail "the shot over 2 ranks through srun: $(grep -E '^FAIL' "$S/log/mpi_shot.log" | head -n 3 | tr '\n' ' ')"
+say "one shot over 2 ranks (srun -n 2): the one-process shot bit for bit, $((SECONDS - t0)) s"
 
 # --- the sweep: three coarse shots and a short bisection -------------------------------------------
 SWEEP=(SHOT_CASE="$ROOT/data/macro_disc_afc_coarse.json" BL_LOW=600 BL_HIGH=900 BL_WIDTH=150 BL_END_TIME_S=2e-4 BL_MAX_END_TIME_S=2e-4)
