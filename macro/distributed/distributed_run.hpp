@@ -6,7 +6,8 @@
 // have moved that far by the end of the next step, the particles go to their regions' ranks (a migrate, or a new balance past the partition's
 // threshold), and the halo and the rank's solver are made again from the particles' records.
 // Not yet (ExplicitSolver::set_rank_share refuses them): lazy rows, the penalty contact, the Midpoint
-// strain configuration; nor the outputs, checkpoints and uhpc-macro under mpirun (docs/cluster.md).
+// strain configuration; nor checkpoints (docs/cluster.md). uhpc-macro steps it through
+// app/distributed_shot.cpp.
 // Every call is collective and assumes every rank gets through it: a caller that catches an exception
 // on one rank must end the job (MPI_Abort), as the others may be waiting for it.
 #include <chrono>
