@@ -89,6 +89,12 @@ class DistributedShot final : public ShotStepper {
     return static_cast<std::size_t>(count);
   }
 
+  double rows_kept_fraction() override {
+    double rows[2] = {static_cast<double>(run_.rows_built()), static_cast<double>(run_.rows_kept())};
+    MPI_Allreduce(MPI_IN_PLACE, rows, 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    return kept_fraction(rows[0], rows[1]);
+  }
+
   double target_mass_kg() override {  // summed as one process sums it, so that the outcome is decided alike
     double mass = 0.0;
     if (rank_ == 0)

@@ -53,7 +53,7 @@ nlohmann::json beyond_domain_json(const Particles& p, const Region& domain) {
 // s: the run's state (time, sphere, books); whole: the whole body's particles (the same solver in one
 // process, ShotStepper::whole in a distributed run).
 nlohmann::json result_json(const ExplicitSolver& s, const ExplicitSolver& whole, std::size_t fragment_particles,
-                           const ImpactTracker& impact, const BalanceTracker& balance, const std::string& model,
+                           double rows_kept_fraction, const ImpactTracker& impact, const BalanceTracker& balance, const std::string& model,
                            double wall_s, const Provenance& provenance, std::size_t field_steps) {
   const double vi = impact.impact_velocity_m_s, vf = s.sphere().v[2];
   nlohmann::json r = {
@@ -81,10 +81,7 @@ nlohmann::json result_json(const ExplicitSolver& s, const ExplicitSolver& whole,
       {"particle_steps_per_s",
        wall_s > 0 ? static_cast<double>(whole.particles().n) * static_cast<double>(s.steps()) / wall_s : 0.0},
       // Lazy RK rows (solver.shape_reuse_tolerance): the fraction of rows kept over the run (0 without).
-      {"shape_rows_kept_fraction",
-       s.shapes().rows_kept + s.shapes().rows_built > 0
-           ? static_cast<double>(s.shapes().rows_kept) / static_cast<double>(s.shapes().rows_kept + s.shapes().rows_built)
-           : 0.0},
+      {"shape_rows_kept_fraction", rows_kept_fraction},
       // Particles moving as rigid fragments at the end (ShapeCache::fragment, solver.fragment_rcond).
       {"fragment_particles", fragment_particles},
       // Ejecta in flight beyond the domain box at the end (SolverOptions::domain).
@@ -201,9 +198,6 @@ bool reuse_finished_run(const fs::path& result, const RunInputs& inputs) {
 // the key or option to change.
 void refuse_beyond_distributed(const Config& cfg, const CaseSettings& settings, const MacroRunArgs& args, int ranks) {
   const std::string on_ranks = fmt::format("not distributed yet: run on one rank, not {}", ranks);
-  if (settings.solver.shape_reuse_tolerance > 0.0)
-    cfg.section("solver").fail("shape_reuse_tolerance",
-                               fmt::format("lazy RK rows are {} (or with --set solver.shape_reuse_tolerance=0)", on_ranks));
   if (settings.run.checkpoint_interval_steps > 0)
     cfg.section("run").fail("checkpoint_interval_steps", "checkpoints are " + on_ranks);
   if (settings.run.fields == FieldSet::Full) cfg.section("run").fail("fields", "the full field set is " + on_ranks);
@@ -431,10 +425,11 @@ void run_macro(const MacroRunArgs& args) {
   const double wall = elapsed();
   const ExplicitSolver* whole = write_fields();
   const std::size_t fragments = shot->fragment_particles();
+  const double rows_kept = shot->rows_kept_fraction();
   if (!writer) return;
   save_history();
   nlohmann::json result =
-      result_json(solver, *whole, fragments, impact, balance, material.model, wall, provenance, fields->steps_written());
+      result_json(solver, *whole, fragments, rows_kept, impact, balance, material.model, wall, provenance, fields->steps_written());
   result["ranks"] = ranks;
   result["inputs"] = inputs_summary(inputs);
   const Vec3 flight = flight_direction(settings.projectile);

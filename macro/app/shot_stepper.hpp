@@ -10,6 +10,8 @@
 
 namespace uhpc::macro {
 
+inline double kept_fraction(double built, double kept) { return built + kept > 0.0 ? kept / (built + kept) : 0.0; }
+
 class ShotStepper {
  public:
   virtual ~ShotStepper() = default;
@@ -29,6 +31,9 @@ class ShotStepper {
   // in the body's order (collective).
   virtual std::size_t fragment_particles() = 0;
   virtual double target_mass_kg() = 0;
+  // Lazy RK rows: the fraction of the rows built over the run that were kept (0 without; over the
+  // ranks, their ghosts' rows included). Collective.
+  virtual double rows_kept_fraction() = 0;
 };
 
 class OneProcessShot final : public ShotStepper {
@@ -45,6 +50,7 @@ class OneProcessShot final : public ShotStepper {
     for (const double m : solver_.particles().mass) mass += m;
     return mass;
   }
+  double rows_kept_fraction() override { return kept_fraction(solver_.shapes().rows_built, solver_.shapes().rows_kept); }
 
  private:
   ExplicitSolver& solver_;

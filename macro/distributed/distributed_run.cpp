@@ -40,10 +40,84 @@ double all_min(double value, MPI_Comm comm) {
   MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, comm);
   return value;
 }
+
+int as_count(std::size_t n) {
+  if (n > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw std::runtime_error("DistributedRun: more values for one rank than an MPI count holds");
+  return static_cast<int>(n);
+}
+
+std::vector<int> displacements(const std::vector<int>& counts) {
+  std::vector<int> at(counts.size(), 0);
+  for (std::size_t r = 1; r < counts.size(); ++r) at[r] = at[r - 1] + counts[r - 1];
+  return at;
+}
+
+// Lazy rows travel with their particles: the rows of the particles `ids` (ascending) of a new rank
+// solver, each from the solver `old` of the rank that owned it (old_ids, old_owned: that solver's
+// particles). The records go into `blob`; one pointer a particle, in the order of ids. Collective.
+std::vector<const double*> rows_from_owners(MPI_Comm comm, std::size_t total, const ExplicitSolver& old,
+                                            const std::vector<std::uint32_t>& old_ids,
+                                            const std::vector<std::uint8_t>& old_owned,
+                                            const std::vector<std::uint32_t>& ids, std::vector<double>& blob) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  const std::size_t ranks = static_cast<std::size_t>(size);
+  // Who owned each particle.
+  std::vector<std::uint32_t> mine;
+  for (std::size_t i = 0; i < old_ids.size(); ++i)
+    if (old_owned[i]) mine.push_back(old_ids[i]);
+  std::vector<int> counts(ranks);
+  int count = as_count(mine.size());
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  std::vector<std::uint32_t> every(total);
+  MPI_Allgatherv(mine.data(), count, MPI_UINT32_T, every.data(), counts.data(), displacements(counts).data(),
+                 MPI_UINT32_T, comm);
+  std::vector<int> owner(total, -1);
+  for (std::size_t r = 0, k = 0; r < ranks; ++r)
+    for (int c = 0; c < counts[r]; ++c) owner[every[k++]] = static_cast<int>(r);
+  // Each rank asks the owners for its particles' rows, in ascending ids per owner.
+  std::vector<int> ask(ranks, 0), asked(ranks);
+  for (const std::uint32_t id : ids) ++ask[static_cast<std::size_t>(owner[id])];
+  MPI_Alltoall(ask.data(), 1, MPI_INT, asked.data(), 1, MPI_INT, comm);
+  const std::vector<int> ask_at = displacements(ask), asked_at = displacements(asked);
+  std::vector<std::uint32_t> questions(ids.size()), requests(static_cast<std::size_t>(asked_at.back() + asked.back()));
+  std::vector<int> filled = ask_at;
+  for (const std::uint32_t id : ids) questions[static_cast<std::size_t>(filled[static_cast<std::size_t>(owner[id])]++)] = id;
+  MPI_Alltoallv(questions.data(), ask.data(), ask_at.data(), MPI_UINT32_T, requests.data(), asked.data(),
+                asked_at.data(), MPI_UINT32_T, comm);
+  // The owners answer with the records, rank by rank.
+  std::vector<double> answers;
+  std::vector<int> answer_size(ranks, 0), answered(ranks);
+  for (std::size_t r = 0; r < ranks; ++r) {
+    const std::size_t before = answers.size();
+    for (int k = 0; k < asked[r]; ++k) {
+      const std::uint32_t id = requests[static_cast<std::size_t>(asked_at[r] + k)];
+      const auto at = std::lower_bound(old_ids.begin(), old_ids.end(), id) - old_ids.begin();
+      old.append_row(static_cast<std::size_t>(at), answers);
+    }
+    answer_size[r] = as_count(answers.size() - before);
+  }
+  MPI_Alltoall(answer_size.data(), 1, MPI_INT, answered.data(), 1, MPI_INT, comm);
+  const std::vector<int> answered_at = displacements(answered);
+  blob.assign(static_cast<std::size_t>(answered_at.back() + answered.back()), 0.0);
+  MPI_Alltoallv(answers.data(), answer_size.data(), displacements(answer_size).data(), MPI_DOUBLE, blob.data(),
+                answered.data(), answered_at.data(), MPI_DOUBLE, comm);
+  // Each owner's records came in the order they were asked for: ascending ids.
+  std::vector<std::size_t> next(ranks);
+  for (std::size_t r = 0; r < ranks; ++r) next[r] = static_cast<std::size_t>(answered_at[r]);
+  std::vector<const double*> records(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    std::size_t& at = next[static_cast<std::size_t>(owner[ids[i]])];
+    records[i] = blob.data() + at;
+    at += static_cast<std::size_t>(blob[at]);  // the record's length
+  }
+  return records;
+}
 }  // namespace
 
 DistributedRun::DistributedRun(MPI_Comm comm, std::size_t total, SolverFactory factory, PartitionOptions options)
-    : comm_(comm), factory_(std::move(factory)), partition_(comm, options) {
+    : comm_(comm), factory_(std::move(factory)), partition_(comm, options), total_(total) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm_.get(), &rank);
   MPI_Comm_size(comm_.get(), &size);
@@ -71,6 +145,10 @@ DistributedRun::DistributedRun(MPI_Comm comm, std::size_t total, SolverFactory f
   // The serial search's skin (ShapeCache: s = skin times the smallest support radius of the body).
   skin_m_ = start.options().neighbour_skin * all_min(min_support, comm_.get());
   cell_m_ = -all_min(-max_support, comm_.get());
+  // A kept lazy row's nodes and its point have moved relative to each other by up to the tolerance
+  // times the point's support radius since it was built (ShapeCache::row_due), and the point relative
+  // to the owned particle it touches likewise: the halo reaches that much further.
+  kept_row_reach_m_ = 2.0 * start.options().shape_reuse_tolerance * cell_m_;
   if (!(skin_m_ > 0.0))
     throw std::invalid_argument("DistributedRun: the halo needs a Verlet skin (solver.neighbour_skin > 0)");
   partition_.balance(owned_);
@@ -86,9 +164,11 @@ void DistributedRun::build_local(bool from_records) {
   std::vector<double> node_reach(owned_.size()), row_reach(owned_.size());
   for (std::size_t k = 0; k < owned_.size(); ++k) {
     const double a = owned_.at(k)[width - 1];
-    node_reach[k] = a + 2.0 * skin_m_;  // Halo: owner computes
+    node_reach[k] = a + 2.0 * skin_m_ + kept_row_reach_m_;  // Halo: owner computes
     row_reach[k] = a;
   }
+  const std::vector<std::uint32_t> old_ids = std::move(local_ids_);
+  const std::vector<std::uint8_t> old_owned = std::move(owned_mask_);
   halo_ = std::make_unique<Halo>(partition_, owned_, node_reach, row_reach, cell_m_);
   sent_ = halo_->sent_rows();
   const ParticleSet local = halo_->local(owned_, &owned_at_);
@@ -105,8 +185,21 @@ void DistributedRun::build_local(bool from_records) {
   if (from_records) {  // the particles from their records, the run's state from the solver it replaces
     for (std::size_t i = 0; i < local.size(); ++i) solver->read_particle(i, local.at(i));
     solver->continue_from(*solver_);
+    if (solver->lazy_rows()) {  // and the rows as their owners kept them
+      std::vector<double> blob;
+      const std::vector<const double*> rows =
+          rows_from_owners(comm_.get(), total_, *solver_, old_ids, old_owned, local_ids_, blob);
+      solver->install_rows(rows, [this](std::uint32_t id) {
+        const auto at = std::lower_bound(local_ids_.begin(), local_ids_.end(), id);
+        return at != local_ids_.end() && *at == id ? static_cast<std::int32_t>(at - local_ids_.begin()) : -1;
+      });
+    }
   } else {
     solver->initialize();
+  }
+  if (solver_) {
+    rows_built_ += solver_->shapes().rows_built;
+    rows_kept_ += solver_->shapes().rows_kept;
   }
   solver_ = std::move(solver);
   // A fresh solver's ghosts hold their own forces of the initial state (their rows are not all here).

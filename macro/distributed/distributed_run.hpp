@@ -5,8 +5,9 @@
 // ghosts. The halo is made for a motion of one Verlet skin s (distributed_run.cpp): once a particle could
 // have moved that far by the end of the next step, the particles go to their regions' ranks (a migrate, or a new balance past the partition's
 // threshold), and the halo and the rank's solver are made again from the particles' records.
-// Not yet (ExplicitSolver::set_rank_share refuses them): lazy rows, the penalty contact, the Midpoint
-// strain configuration; nor checkpoints (docs/cluster.md). uhpc-macro steps it through
+// Lazy rows travel with their particles: at a halo build each rank takes its particles' rows from the
+// solvers of their former owners. Not yet (ExplicitSolver::set_rank_share refuses them): the penalty
+// contact, the Midpoint strain configuration; nor checkpoints (docs/cluster.md). uhpc-macro steps it through
 // app/distributed_shot.cpp.
 // Every call is collective and assumes every rank gets through it: a caller that catches an exception
 // on one rank must end the job (MPI_Abort), as the others may be waiting for it.
@@ -52,6 +53,9 @@ class DistributedRun {
   std::size_t halo_builds() const { return halo_builds_; }
   double halo_build_seconds() const { return halo_build_s_; }  // wall time in them, this rank
   std::size_t balances() const { return partition_.balances(); }
+  // Lazy rows built and kept on this rank over the run (ShapeCache::rows_built, rows_kept of its solvers).
+  std::size_t rows_built() const { return rows_built_ + solver_->shapes().rows_built; }
+  std::size_t rows_kept() const { return rows_kept_ + solver_->shapes().rows_kept; }
   double skin() const { return skin_m_; }
 
  private:
@@ -65,6 +69,7 @@ class DistributedRun {
   CommunicatorCopy comm_;
   SolverFactory factory_;
   ParticlePartition partition_;
+  std::size_t total_ = 0;                      // the body's particles
   std::unique_ptr<ExplicitSolver> solver_;
   std::unique_ptr<Halo> halo_;
   ParticleSet owned_;                          // the owned particles' records, sorted by id
@@ -74,7 +79,9 @@ class DistributedRun {
   std::vector<std::uint32_t> sent_;            // the rows of owned_ that are other ranks' ghosts
   std::vector<double> x_at_halo_;              // the solver's positions when the halo was made
   double skin_m_ = 0.0, cell_m_ = 0.0;         // s and the reach maps' cell
+  double kept_row_reach_m_ = 0.0;              // the halo's room for kept lazy rows
   std::size_t halo_builds_ = 0;
+  std::size_t rows_built_ = 0, rows_kept_ = 0;  // those of the solvers replaced so far
   double halo_build_s_ = 0.0;
 };
 

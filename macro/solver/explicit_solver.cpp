@@ -123,6 +123,10 @@ ShapeCache ExplicitSolver::empty_shape_cache() const {
   cache.reuse_tolerance = options_.shape_reuse_tolerance;
   cache.fragment_rcond = options_.fragment_rcond;
   cache.keep_psi = false;  // the step reads only the gradients
+  if (share_) {  // a rank's part: its own rows decide a new layout of lazy rows, with the other ranks
+    cache.counted = share_->owned.data();
+    cache.any_rank = [min = share_->min](bool mine) { return min(mine ? 0.0 : 1.0) == 0.0; };  // as ranks_any
+  }
   return cache;
 }
 
@@ -136,11 +140,22 @@ void ExplicitSolver::set_rank_share(RankShare share) {
     throw std::invalid_argument("ExplicitSolver::set_rank_share: the particles must be in ascending global ids");
   if (st_.sphere && st_.sphere->contact.model == SphereContactModel::Penalty)
     throw std::invalid_argument("ExplicitSolver::set_rank_share: the penalty contact is not distributed yet");
-  if (options_.shape_reuse_tolerance > 0)
-    throw std::invalid_argument("ExplicitSolver::set_rank_share: lazy rows (shape_reuse_tolerance > 0) are not distributed yet");
   if (options_.strain_configuration == StrainConfiguration::Midpoint)
     throw std::invalid_argument("ExplicitSolver::set_rank_share: the midpoint strain configuration is not distributed yet");
   share_ = std::move(share);
+  shapes_ = empty_shape_cache();
+}
+
+void ExplicitSolver::append_row(std::size_t i, std::vector<double>& out) const {
+  if (!share_ || !initialized_) throw std::logic_error("ExplicitSolver::append_row: for a distributed run's rank solvers");
+  shapes_.append_row(i, share_->ids.data(), out);
+}
+
+void ExplicitSolver::install_rows(const std::vector<const double*>& records,
+                                  const std::function<std::int32_t(std::uint32_t)>& local_of) {
+  if (!share_ || !initialized_) throw std::logic_error("ExplicitSolver::install_rows: after continue_from");
+  shapes_.install_rows(p_.n, records, local_of, second_options());
+  shapes_at_x_ = true;  // as the solver it replaces left them, at the positions of its last step
 }
 
 void ExplicitSolver::ranks_sum(std::initializer_list<double*> values) const {

@@ -21,6 +21,7 @@
 // times the step just taken, the step is repeated from the saved state with the new stable step.
 // Nothing allocates inside steps once the neighbour counts have settled.
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -140,15 +141,21 @@ class ExplicitSolver {
   void add_prescribed_velocity(const PrescribedVelocity& bc) { prescribed_.push_back(bc); }
   // The free rigid projectile (at most one; validated). Set before initialize() (std::logic_error after).
   void set_sphere(const RigidSphere& sphere);
-  // Makes the solver one rank's part (rank_share.hpp). Before initialize(). Not yet with lazy rows
-  // (shape_reuse_tolerance > 0), the penalty contact or the Midpoint configuration (std::invalid_argument):
-  // lazy rows need the rows' build configurations shipped with the particles.
+  // Makes the solver one rank's part (rank_share.hpp). Before initialize(). Not yet with the penalty
+  // contact or the Midpoint configuration (std::invalid_argument).
   void set_rank_share(RankShare share);
   // In place of initialize(), for a distributed run's new rank solver (set_rank_share called, every
   // particle's state already in through read_particle): the run goes on from `previous`, the solver it
   // replaces (the time, step, books, sphere and domain are the run's, the same on every rank). The rows
-  // are built at the next step.
+  // are built at the next step, or, lazy rows, installed next (install_rows).
   void continue_from(const ExplicitSolver& previous);
+  // Lazy rows (shape_reuse_tolerance > 0) travel with their particles between a distributed run's
+  // rank solvers: particle i's row as a record (ShapeCache::append_row, its nodes by global id), and, after
+  // continue_from, every particle's row installed from the records of the solvers it came from, in
+  // place of rows built afresh (which would differ: a kept row holds the configuration it was built in).
+  void append_row(std::size_t i, std::vector<double>& out) const;
+  void install_rows(const std::vector<const double*>& records, const std::function<std::int32_t(std::uint32_t)>& local_of);
+  bool lazy_rows() const { return options_.shape_reuse_tolerance > 0.0; }
   bool distributed() const { return share_.has_value(); }
 
   // Forces and accelerations at t = 0, initial energies and momentum, the first stable step. Call once

@@ -66,10 +66,14 @@ bool ShapeCache::prepare(const rk::Options& options, const double* x, const doub
       for (std::int64_t p = 0; p < nq; ++p) {
         const bool due = row_due(p);
         due_[p] = due ? 1 : 0;
-        if (due && members_now(p) > lazy_offsets_[p + 1] - lazy_offsets_[p]) overflow = true;
+        if (due && members_now(p) > lazy_offsets_[p + 1] - lazy_offsets_[p]) {
+          if (!counted || counted[p]) overflow = true;
+          else due_[p] = 0;  // a ghost's row no owned particle reads (counted, above)
+        }
       }
       fresh = overflow;
     }
+    if (any_rank) fresh = any_rank(fresh);
     if (fresh) {
       gradients_of_old_rows();
       // Slots with room for the neighbour counts to grow (compression) before the next new layout.
@@ -273,6 +277,67 @@ void ShapeCache::find_with_skin(const double* x, const double* support_radius, s
   for (std::int64_t i = 0; i < nq; ++i)
     std::copy(filtered.data() + candidates.begin(i), filtered.data() + candidates.begin(i) + support.count(i),
               support.indices.data() + support.begin(i));
+}
+
+// The record: its length in doubles, the slot, the size, info (path, basis, rcond), hess_path, then the
+// nodes' ids, their build offsets (3 floats as doubles: exact), the gradients (3) and the second
+// gradients (6, when kept) of every entry.
+void ShapeCache::append_row(std::size_t p, const std::uint32_t* ids, std::vector<double>& out) const {
+  if (!lazy()) throw std::logic_error("ShapeCache::append_row: for lazy rows");
+  const std::int64_t b = lazy_offsets_[p], size = lazy_size_[p];
+  out.push_back(static_cast<double>(7 + size * (has_second_gradients() ? 13 : 7)));
+  out.push_back(static_cast<double>(lazy_offsets_[p + 1] - b));
+  out.push_back(static_cast<double>(size));
+  out.push_back(static_cast<double>(static_cast<int>(info[p].path)));
+  out.push_back(static_cast<double>(static_cast<int>(info[p].basis)));
+  out.push_back(info[p].rcond);
+  out.push_back(has_second_gradients() ? static_cast<double>(static_cast<int>(hess_path[p])) : 0.0);
+  for (std::int64_t k = 0; k < size; ++k) out.push_back(static_cast<double>(ids[lazy_nodes_[b + k]]));
+  out.insert(out.end(), built_offset_.begin() + 3 * b, built_offset_.begin() + 3 * (b + size));
+  out.insert(out.end(), grad.begin() + 3 * b, grad.begin() + 3 * (b + size));
+  if (has_second_gradients()) out.insert(out.end(), hess.begin() + 6 * b, hess.begin() + 6 * (b + size));
+}
+
+void ShapeCache::install_rows(std::size_t n, const std::vector<const double*>& records,
+                              const std::function<std::int32_t(std::uint32_t)>& local_of,
+                              const SecondGradientOptions* second) {
+  if (!lazy() || records.size() != n) throw std::logic_error("ShapeCache::install_rows: lazy rows, one record a point");
+  lazy_offsets_.assign(n + 1, 0);
+  for (std::size_t p = 0; p < n; ++p) lazy_offsets_[p + 1] = lazy_offsets_[p] + static_cast<std::int64_t>(records[p][1]);
+  const std::size_t slots = static_cast<std::size_t>(lazy_offsets_[n]);
+  lazy_nodes_.assign(slots, 0);
+  built_offset_.assign(3 * slots, 0.0f);
+  grad.assign(3 * slots, 0.0);
+  if (second) hess.assign(6 * slots, 0.0);
+  else hess.clear();
+  info.assign(n, rk::PointResult{});
+  hess_path.assign(second ? n : 0, SecondGradientPath::Empty);
+  lazy_size_.assign(n, 0);
+  due_.assign(n, 0);
+  for (std::size_t p = 0; p < n; ++p) {
+    const double* r = records[p];
+    const std::int64_t b = lazy_offsets_[p], size = static_cast<std::int64_t>(r[2]);
+    const double* ids = r + 7;
+    bool whole = true;
+    for (std::int64_t k = 0; k < size && whole; ++k) {
+      const std::int32_t j = local_of(static_cast<std::uint32_t>(ids[k]));
+      whole = j >= 0;
+      lazy_nodes_[b + k] = j;
+    }
+    if (!whole) continue;  // empty: made again when next due
+    lazy_size_[p] = static_cast<std::int32_t>(size);
+    info[p] = {static_cast<rk::Path>(static_cast<int>(r[3])), static_cast<rk::Basis>(static_cast<int>(r[4])), r[5]};
+    if (second) hess_path[p] = static_cast<SecondGradientPath>(static_cast<int>(r[6]));
+    const double* built = ids + size;
+    const double* g = built + 3 * size;
+    for (std::int64_t e = 0; e < 3 * size; ++e) {
+      built_offset_[3 * b + e] = static_cast<float>(built[e]);
+      grad[3 * b + e] = g[e];
+    }
+    if (second) std::copy(g + 3 * size, g + 9 * size, hess.begin() + 6 * b);
+  }
+  second_ = second;
+  longest_ = 0;
 }
 
 std::size_t ShapeCache::count(rk::Path path) const {

@@ -8,6 +8,7 @@
 // (shape_gradients). Both equal rk::evaluate<3> (+ second_gradients) to round-off.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "solver/second_gradients.hpp"
@@ -79,6 +80,13 @@ struct ShapeCache {
   double fragment_rcond = 0.0;
   std::size_t rows_built = 0, rows_kept = 0;  // rows rebuilt / kept over all prepares (lazy rows only)
   std::size_t layouts = 0;                    // new slot layouts (every row built; lazy rows only)
+  // One rank of a distributed run (solver/rank_share.hpp) with lazy rows: only the rows of `counted`
+  // points (its own particles) decide a new layout, and the ranks decide it together (any_rank: true on
+  // every rank when true on one; called once a prepare). A row not counted that would outgrow its slot
+  // keeps its old values: it is a ghost's row that no owned particle reads (the halo holds the nodes of
+  // every row that one reads, so those rows are their owners' and outgrow their slots with them).
+  const std::uint8_t* counted = nullptr;
+  std::function<bool(bool)> any_rank;
 
  private:
   // The arguments of the last prepare(), for build_row.
@@ -133,6 +141,15 @@ struct ShapeCache {
   }
 
   std::size_t fragments() const;  // rows that are fragments now
+
+  // Lazy rows as records, for a distributed run's particles that change rank (DistributedRun): row p
+  // appended to `out` as doubles, its nodes as their global ids ids[node]; and a table of n rows made
+  // from such records (records[p]: row p's), the nodes mapped to this table's points by local_of (-1:
+  // not here). A row with a node not here is installed empty: a ghost's row no owned particle reads, made
+  // again when it is next due. The rows then stand as after a prepare at the positions they came from.
+  void append_row(std::size_t p, const std::uint32_t* ids, std::vector<double>& out) const;
+  void install_rows(std::size_t n, const std::vector<const double*>& records,
+                    const std::function<std::int32_t(std::uint32_t)>& local_of, const SecondGradientOptions* second);
 
   // Lazy rows and p kept at this prepare (build_row(p) leaves it as it was).
   bool row_kept(std::size_t p) const { return lazy() && !due_[p]; }

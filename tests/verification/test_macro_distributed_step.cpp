@@ -45,7 +45,8 @@ struct SmallDisc {
   ParticleBody body;
   MaterialSet law;
 
-  explicit SmallDisc(Strike how)
+  // reuse: solver.shape_reuse_tolerance (0: every row rebuilt each step; the shipped cases' 3e-4: lazy rows).
+  explicit SmallDisc(Strike how, double reuse = 0.0)
       : strike(how), settings(read_case(cfg)), law(make_material(cfg.section("material"), 0, std::nullopt).set) {
     settings.target.disc.radius_m = 0.036;
     settings.target.disc.thickness_m = 0.012;
@@ -53,7 +54,7 @@ struct SmallDisc {
     settings.target.disc.h_rim_m = 0.0045;
     settings.target.disc.core_radius_m = 0.012;
     settings.support.rim_width_m = 0.006;
-    settings.solver.shape_reuse_tolerance = 0.0;
+    settings.solver.shape_reuse_tolerance = reuse;
     if (strike == Strike::Core) {  // the sphere waits at rest, 10 mm off the entry face
       settings.projectile.velocity_m_s = 0.0;
       settings.projectile.initial_gap_m = 0.01;
@@ -99,11 +100,11 @@ double settings_velocity(const SmallDisc& disc) { return disc.settings.projectil
 double relative(double a, double b) { return a == b ? 0.0 : std::fabs(a - b) / std::max(std::fabs(a), std::fabs(b)); }
 
 // Steps the disc at this many ranks and at one process, and compares (rank 0).
-void expect_the_one_process_run(Strike strike) {
+void expect_the_one_process_run(Strike strike, double reuse = 0.0) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  const SmallDisc disc(strike);
+  const SmallDisc disc(strike, reuse);
   DistributedRun run(MPI_COMM_WORLD, disc.size(), [&](const std::vector<std::uint32_t>& ids) { return disc.solver(ids); });
   const std::vector<int> first_owners = owners(run, rank);
   int failed_at = 0;
@@ -127,6 +128,11 @@ void expect_the_one_process_run(Strike strike) {
   ExplicitSolver serial = disc.solver(all_ids(disc.size()));
   serial.initialize();
   for (int k = 1; k <= kSteps; ++k) ASSERT_TRUE(serial.step()) << "the one-process run failed step " << k;
+  if (reuse > 0.0) {
+    const double kept = static_cast<double>(serial.shapes().rows_kept);
+    EXPECT_GT(kept, 0.2 * (kept + static_cast<double>(serial.shapes().rows_built))) << "too few rows kept to try lazy rows";
+    EXPECT_GE(serial.shapes().layouts, 2u) << "no new slot layout after the first";
+  }
 
   ASSERT_EQ(all.size(), disc.size());
   const std::size_t width = serial.particle_record_width();
@@ -161,9 +167,10 @@ void expect_the_one_process_run(Strike strike) {
     EXPECT_LT(one.v[2], 0.99 * settings_velocity(disc)) << "the sphere has not struck yet";
     EXPECT_LE(relative(a.contact, b.contact), 1e-12) << "contact: " << a.contact << " against " << b.contact;
   }
-  std::printf("%d ranks: %zu particles, %zu halo builds, %zu balances, %zu changed ranks, largest axial motion %.2f mm, "
-              "kinetic %.6g J, opening %.6g J\n",
-              size, all.size(), run.halo_builds(), run.balances(), migrated, 1e3 * moved, a.kinetic, a.opening);
+  std::printf("%d ranks%s: %zu particles, %zu halo builds, %zu balances, %zu changed ranks, largest axial motion %.2f mm, "
+              "kinetic %.6g J, opening %.6g J; one process: %zu rows built, %zu kept, %zu layouts\n",
+              size, reuse > 0.0 ? " (lazy rows)" : "", all.size(), run.halo_builds(), run.balances(), migrated, 1e3 * moved,
+              a.kinetic, a.opening, serial.shapes().rows_built, serial.shapes().rows_kept, serial.shapes().layouts);
 }
 
 // A particle whose velocity is not finite fails the first step on its rank: every rank must give the
@@ -196,5 +203,17 @@ TEST(MacroDistributedStep, AFailureOnOneRankIsTheSameFailureOnEvery) {
 TEST(MacroDistributedStep, AThrownCoreEqualsTheOneProcessRunBitForBit) { expect_the_one_process_run(Strike::Core); }
 
 TEST(MacroDistributedStep, TheSphereEqualsTheOneProcessRunBitForBit) { expect_the_one_process_run(Strike::Sphere); }
+
+// The same with lazy rows (the shipped tolerance): the rows kept by their owners travel with the
+// particles at every halo build, so they are the one-process rows whatever rank holds them.
+constexpr double kShippedReuse = 3e-4;
+
+TEST(MacroDistributedStep, AThrownCoreWithLazyRowsEqualsTheOneProcessRunBitForBit) {
+  expect_the_one_process_run(Strike::Core, kShippedReuse);
+}
+
+TEST(MacroDistributedStep, TheSphereWithLazyRowsEqualsTheOneProcessRunBitForBit) {
+  expect_the_one_process_run(Strike::Sphere, kShippedReuse);
+}
 
 }  // namespace
