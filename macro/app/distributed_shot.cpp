@@ -95,6 +95,20 @@ class DistributedShot final : public ShotStepper {
     return kept_fraction(rows[0], rows[1]);
   }
 
+  SolverCheckpoint checkpoint() override {
+    const ExplicitSolver* whole = this->whole();
+    if (!whole) return {};
+    whole_->adopt_run_state(run_.solver());
+    return whole_->checkpoint();
+  }
+  void resume(const SolverCheckpoint& checkpoint) override { run_.resume(checkpoint); }
+  void drop_rows() override { run_.drop_rows(); }
+  bool agree(bool decided) override {
+    int flag = decided ? 1 : 0;
+    MPI_Bcast(&flag, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    return flag != 0;
+  }
+
   double target_mass_kg() override {  // summed as one process sums it, so that the outcome is decided alike
     double mass = 0.0;
     if (rank_ == 0)

@@ -196,42 +196,42 @@ bool reuse_finished_run(const fs::path& result, const RunInputs& inputs) {
 
 // What a run over several ranks cannot do yet (distributed_shot.hpp) is refused before it starts, with
 // the key or option to change.
-void refuse_beyond_distributed(const Config& cfg, const CaseSettings& settings, const MacroRunArgs& args, int ranks) {
+void refuse_beyond_distributed(const Config& cfg, const CaseSettings& settings, int ranks) {
   const std::string on_ranks = fmt::format("not distributed yet: run on one rank, not {}", ranks);
-  if (settings.run.checkpoint_interval_steps > 0)
-    cfg.section("run").fail("checkpoint_interval_steps", "checkpoints are " + on_ranks);
   if (settings.run.fields == FieldSet::Full) cfg.section("run").fail("fields", "the full field set is " + on_ranks);
   if (settings.solver.strain_configuration == StrainConfiguration::Midpoint)
     cfg.section("solver").fail("strain_configuration", "the midpoint configuration is " + on_ranks);
   if (settings.projectile.contact.model == SphereContactModel::Penalty)
     cfg.section("projectile").section("contact").fail("model", "the penalty contact is " + on_ranks);
-  if (args.restart || args.checkpoint_every_s > 0.0)
-    throw InputError(fmt::format("{}: checkpoints are {}", args.restart ? "--restart" : "--checkpoint-every-min", on_ranks));
 }
 
-// The case's solver in one process (resumed from `resumed` when given) or its parts over the ranks.
+// The case's solver in one process or its parts over the ranks, resumed from `resumed` when given.
 std::unique_ptr<ShotStepper> make_shot(const CaseSettings& settings, const ParticleBody& body, const MaterialSet& law,
                                        int ranks, std::optional<ExplicitSolver>& one_process,
                                        const std::optional<RunCheckpoint>& resumed, const fs::path& checkpoint_file) {
+  std::unique_ptr<ShotStepper> shot;
 #ifdef UHPC_WITH_MPI
   if (ranks > 1) {
     try {
-      return make_distributed_shot(settings, body, law);
+      shot = make_distributed_shot(settings, body, law);
     } catch (const std::invalid_argument& e) {  // what the rank solvers refuse (ExplicitSolver::set_rank_share)
       throw InputError(fmt::format("{} (run on one rank, not {})", e.what(), ranks));
     }
   }
 #endif
   (void)ranks;
-  one_process.emplace(make_solver(settings, body, law));
+  if (!shot) {
+    one_process.emplace(make_solver(settings, body, law));
+    shot = std::make_unique<OneProcessShot>(*one_process);
+  }
   if (resumed) {
     try {
-      one_process->resume(resumed->solver);
+      shot->resume(resumed->solver);
     } catch (const std::invalid_argument& e) {
       throw InputError(checkpoint_file.string() + ": does not fit this case: " + e.what());
     }
   }
-  return std::make_unique<OneProcessShot>(*one_process);
+  return shot;
 }
 
 }  // namespace
@@ -270,7 +270,7 @@ void run_macro(const MacroRunArgs& args) {
     return;
   }
   if (args.reuse && reuse_finished_run(args.out / "result.json", inputs)) return;
-  if (ranks > 1) refuse_beyond_distributed(cfg, settings, args, ranks);
+  if (ranks > 1) refuse_beyond_distributed(cfg, settings, ranks);
   std::optional<RunCheckpoint> resumed;
   if (args.restart) {
     resumed = read_checkpoint(checkpoint_file, inputs.restart_hash);
@@ -344,13 +344,15 @@ void run_macro(const MacroRunArgs& args) {
   // The checkpoints of run.checkpoint_interval_steps and of the end drop the shape cache where they are
   // written, so the run that writes them and a run resumed from one rebuild every row from the same state
   // (ExplicitSolver::resume). The wall clock's (--checkpoint-every-min) keep it: when they fire depends on
-  // the machine, and the run's numbers must not. One process only (refuse_beyond_distributed).
+  // the machine, and the run's numbers must not. Over several ranks, rank 0 writes the whole body's
+  // (collective), and rank 0's clock decides when.
   enum class ShapeRows : bool { Keep, Drop };
   const auto write_checkpoint_now = [&](ShapeRows rows) {
-    ExplicitSolver& solver = *one_process;
-    if (rows == ShapeRows::Drop) solver.drop_shape_cache();
+    if (rows == ShapeRows::Drop) shot->drop_rows();
+    SolverCheckpoint state = shot->checkpoint();
+    if (!writer) return;
     history.save(args.out / "history.csv");
-    write_checkpoint(checkpoint_file, {solver.checkpoint(), history.text(), history.rows(), impact, balance,
+    write_checkpoint(checkpoint_file, {std::move(state), history.text(), history.rows(), impact, balance,
                                        fields->state(), inputs.restart_hash, checkpoint_build()});
   };
   const auto finished = [&] {
@@ -405,7 +407,8 @@ void run_macro(const MacroRunArgs& args) {
         solver.steps() % settings.run.checkpoint_interval_steps == 0) {
       write_checkpoint_now(ShapeRows::Drop);
       last_checkpoint_s = elapsed();
-    } else if (!last_step && args.checkpoint_every_s > 0.0 && elapsed() - last_checkpoint_s >= args.checkpoint_every_s) {
+    } else if (!last_step && args.checkpoint_every_s > 0.0 &&
+               shot->agree(elapsed() - last_checkpoint_s >= args.checkpoint_every_s)) {
       write_checkpoint_now(ShapeRows::Keep);
       last_checkpoint_s = elapsed();
     }
@@ -419,13 +422,16 @@ void run_macro(const MacroRunArgs& args) {
   const ExplicitSolver& solver = shot->solver();
   if (!impact.decided())
     spdlog::warn("outcome undecided: the sphere is still moving in the target at the end time ({:.1f} us, v_z = {:.2f} "
-                 "m/s); run.end_time_s is too short to decide this shot{}",
-                 solver.time() * 1e6, solver.sphere().v[2],
-                 ranks > 1 ? " (a run on several ranks keeps no checkpoint to go on from)" : "");
+                 "m/s); run.end_time_s is too short to decide this shot",
+                 solver.time() * 1e6, solver.sphere().v[2]);
   const double wall = elapsed();
   const ExplicitSolver* whole = write_fields();
   const std::size_t fragments = shot->fragment_particles();
   const double rows_kept = shot->rows_kept_fraction();
+  // An undecided run keeps its last state as a checkpoint, so that --restart with a later run.end_time_s
+  // carries it on instead of starting again; it is written before result.json, so that a result.json on
+  // disk always means a finished run. A decided run's results replace the checkpoint.
+  if (!impact.decided()) write_checkpoint_now(ShapeRows::Drop);
   if (!writer) return;
   save_history();
   nlohmann::json result =
@@ -441,10 +447,6 @@ void run_macro(const MacroRunArgs& args) {
     warnings.push_back(std::move(w));
   }
   result["warnings"] = warnings_json(warnings);
-  // A decided run is complete: its results replace the checkpoint. An undecided one keeps its last state
-  // as one, so that --restart with a later run.end_time_s carries it on instead of starting again; it is
-  // written first, so that a result.json on disk always means a finished run.
-  if (!impact.decided() && one_process) write_checkpoint_now(ShapeRows::Drop);
   write_text_atomic(args.out / "result.json", result.dump(2) + "\n");
   if (impact.decided()) fs::remove(checkpoint_file);
   spdlog::info("{} steps ({} repeated) in {:.2f} s, {:.3g} particle-steps/s; sphere v_z {:.2f} m/s ({}); energy "

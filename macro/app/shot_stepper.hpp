@@ -34,6 +34,14 @@ class ShotStepper {
   // Lazy RK rows: the fraction of the rows built over the run that were kept (0 without; over the
   // ranks, their ghosts' rows included). Collective.
   virtual double rows_kept_fraction() = 0;
+  // Checkpoints, in one process's format whatever the ranks (collective): the run's state, on the rank
+  // that writes (empty on the others); going on from one (std::invalid_argument for one of another
+  // body); the RK rows dropped where a checkpoint that must be resumed bit for bit is written.
+  virtual SolverCheckpoint checkpoint() = 0;
+  virtual void resume(const SolverCheckpoint& checkpoint) = 0;
+  virtual void drop_rows() = 0;
+  // A decision every rank must take alike, from what the rank that writes decided (its wall clock).
+  virtual bool agree(bool decided) = 0;
 };
 
 class OneProcessShot final : public ShotStepper {
@@ -51,6 +59,10 @@ class OneProcessShot final : public ShotStepper {
     return mass;
   }
   double rows_kept_fraction() override { return kept_fraction(solver_.shapes().rows_built, solver_.shapes().rows_kept); }
+  SolverCheckpoint checkpoint() override { return solver_.checkpoint(); }
+  void resume(const SolverCheckpoint& checkpoint) override { solver_.resume(checkpoint); }
+  void drop_rows() override { solver_.drop_shape_cache(); }
+  bool agree(bool decided) override { return decided; }
 
  private:
   ExplicitSolver& solver_;

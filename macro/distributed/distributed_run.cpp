@@ -185,7 +185,8 @@ void DistributedRun::build_local(bool from_records) {
   if (from_records) {  // the particles from their records, the run's state from the solver it replaces
     for (std::size_t i = 0; i < local.size(); ++i) solver->read_particle(i, local.at(i));
     solver->continue_from(*solver_);
-    if (solver->lazy_rows()) {  // and the rows as their owners kept them
+    // And the rows as their owners kept them (none after a drop: every rank built them afresh then).
+    if (solver->lazy_rows() && solver_->shapes().has_rows(solver_->particles().n)) {
       std::vector<double> blob;
       const std::vector<const double*> rows =
           rows_from_owners(comm_.get(), total_, *solver_, old_ids, old_owned, local_ids_, blob);
@@ -247,6 +248,23 @@ void DistributedRun::refresh_ghosts() {
   halo_->refresh(owned_);
   const ParticleSet& ghosts = halo_->ghosts();
   for (std::size_t g = 0; g < ghosts.size(); ++g) solver_->read_particle(ghost_at_[g], ghosts.at(g));
+}
+
+void DistributedRun::resume(const SolverCheckpoint& checkpoint) {
+  int failed = 0;
+  std::string why;
+  try {
+    solver_->resume_part(checkpoint);
+  } catch (const std::invalid_argument& e) {
+    failed = 1;
+    why = e.what();
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm_.get());
+  if (failed) throw std::invalid_argument(why.empty() ? "DistributedRun::resume: another rank refused the checkpoint" : why);
+  pack_owned();
+  partition_.rebalance_if_needed(owned_);
+  owned_.sort_by_id();
+  build_local(true);
 }
 
 bool DistributedRun::step() {

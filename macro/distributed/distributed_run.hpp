@@ -42,6 +42,12 @@ class DistributedRun {
   // One step on every rank (ExplicitSolver::step), the ghosts refreshed, the halo made again when due.
   // Collective; false on every rank when the step failed (the solvers are back at the last good state).
   bool step();
+  // Goes on from a checkpoint of the whole body (ExplicitSolver::resume_part on every rank, then the
+  // particles to their regions and a new halo). Collective; std::invalid_argument for one of another body.
+  void resume(const SolverCheckpoint& checkpoint);
+  // Every rank's rows dropped, to be built afresh at the next step, as one process drops its own where it
+  // writes a checkpoint (ExplicitSolver::drop_shape_cache). Collective by convention.
+  void drop_rows() { solver_->drop_shape_cache(); }
 
   const ExplicitSolver& solver() const { return *solver_; }
   // The rank's particles' global ids in the solver's order (owned and ghosts), and whether each is owned.

@@ -742,6 +742,63 @@ void ExplicitSolver::resume(const SolverCheckpoint& c) {
   save_state();
 }
 
+void ExplicitSolver::resume_part(const SolverCheckpoint& c) {
+  if (!initialized_ || !share_) throw std::logic_error("ExplicitSolver::resume_part: for an initialized rank solver");
+  std::size_t total = 0;  // the whole body's particles, from the checkpoint's positions
+  for (const auto& [name, values] : c.particle_fields)
+    if (name == "x") total = values.size() / 3;
+  if (total == 0 || c.state.f_ext_old.size() != 3 * total || c.state.f_contact_old.size() != 3 * total)
+    throw std::invalid_argument("ExplicitSolver::resume_part: the checkpoint holds no whole body");
+  for (const std::uint32_t id : share_->ids)
+    if (id >= total) throw std::invalid_argument("ExplicitSolver::resume_part: the checkpoint holds fewer particles than the run");
+  std::vector<const std::vector<double>*> fields;
+  for (const EvolvingField& f : kEvolvingFields) {
+    const auto it = std::find_if(c.particle_fields.begin(), c.particle_fields.end(),
+                                 [&](const auto& named) { return named.first == f.name; });
+    if (it == c.particle_fields.end())
+      throw std::invalid_argument(std::string("ExplicitSolver::resume_part: no particle field '") + f.name + "'");
+    const std::size_t w = (p_.*f.field).size() / std::max<std::size_t>(p_.n, 1);
+    check_size(f.name, it->second.size(), w * total);
+    fields.push_back(&it->second);
+  }
+  const std::size_t bytes = std::visit([](const auto& b) { return sizeof(b.state[0]); }, material_);
+  check_size("material state bytes", c.material_states.size(), bytes * total);
+  if (c.state.sphere.has_value() != st_.sphere.has_value())
+    throw std::invalid_argument("ExplicitSolver::resume_part: the checkpoint and the solver disagree on the sphere");
+  // Everything checked: now the state is replaced.
+  for (std::size_t i = 0; i < p_.n; ++i) {
+    const std::size_t g = share_->ids[i];
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      std::vector<double>& field = p_.*kEvolvingFields[k].field;
+      const std::size_t w = field.size() / p_.n;
+      std::copy(fields[k]->data() + w * g, fields[k]->data() + w * (g + 1), field.data() + w * i);
+    }
+    std::visit([&](auto& block) { std::memcpy(static_cast<void*>(&block.state[i]), c.material_states.data() + bytes * g, bytes); },
+               material_);
+  }
+  std::vector<double> f_ext_old = std::move(st_.f_ext_old), f_contact_old = std::move(st_.f_contact_old);
+  st_ = c.state;
+  for (std::size_t i = 0; i < p_.n; ++i)
+    for (std::size_t d = 0; d < 3; ++d) {
+      f_ext_old[3 * i + d] = c.state.f_ext_old[3 * share_->ids[i] + d];
+      f_contact_old[3 * i + d] = c.state.f_contact_old[3 * share_->ids[i] + d];
+    }
+  st_.f_ext_old = std::move(f_ext_old);
+  st_.f_contact_old = std::move(f_contact_old);
+  counters_ = c.counters;
+  drop_shape_cache();
+  save_state();
+}
+
+void ExplicitSolver::adopt_run_state(const ExplicitSolver& run) {
+  if (share_) throw std::logic_error("ExplicitSolver::adopt_run_state: for a solver of the whole body");
+  std::vector<double> f_ext_old = std::move(st_.f_ext_old), f_contact_old = std::move(st_.f_contact_old);  // read_particle's
+  st_ = run.st_;
+  st_.f_ext_old = std::move(f_ext_old);
+  st_.f_contact_old = std::move(f_contact_old);
+  counters_ = run.counters_;
+}
+
 namespace {
 template <class Block>
 std::size_t state_bytes_per_particle(const Block&) {

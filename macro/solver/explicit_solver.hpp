@@ -181,6 +181,13 @@ class ExplicitSolver {
   void read_particle(std::size_t i, const double* in);
   void resume(const SolverCheckpoint& checkpoint);
   void drop_shape_cache();
+  // Checkpoints of a distributed run, which are those of one process (any rank count resumes them):
+  // resume_part, on a rank solver after initialize(), takes its particles (by global id) and the run's
+  // state from a checkpoint of the whole body; adopt_run_state makes a solver of the whole body that
+  // holds the ranks' particles (read_particle) carry `run`'s time, step, books and sphere, so that its
+  // checkpoint() is the run's.
+  void resume_part(const SolverCheckpoint& checkpoint);
+  void adopt_run_state(const ExplicitSolver& run);
 
   double time() const { return st_.time_s; }
   double dt() const { return options_.fixed_dt_s > 0 ? options_.fixed_dt_s : st_.dt_s; }

@@ -141,6 +141,8 @@ struct ShapeCache {
   }
 
   std::size_t fragments() const;  // rows that are fragments now
+  // Whether it holds the rows of n points (none after a drop, before the first prepare).
+  bool has_rows(std::size_t n) const { return (lazy() ? lazy_size_.size() : support.size()) == n && info.size() == n; }
 
   // Lazy rows as records, for a distributed run's particles that change rank (DistributedRun): row p
   // appended to `out` as doubles, its nodes as their global ids ids[node]; and a table of n rows made

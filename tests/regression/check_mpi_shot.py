@@ -12,7 +12,9 @@ Checks:
   - the energy and momentum books in result.json and history.csv agree to 1e-10 of the energy put in and
     of the initial momentum (each rank sums its own particles, then the ranks' sums are added);
   - result.json records the rank count;
-  - a case the ranks cannot run yet (checkpoints) exits 2 with one error line naming the key.
+  - checkpoints: the shot stopped undecided at 20 us and carried on with --restart, over N ranks and then
+    another rank count (one process after 2 ranks), equals the same in one process;
+  - a case the ranks cannot run yet (the full field set) exits 2 with one error line naming the key.
 
 usage: check_mpi_shot.py --macro BIN --mpirun "MPIRUN --oversubscribe -np" --ranks N --out DIR
 """
@@ -67,24 +69,36 @@ mpirun = a.mpirun.split() + [str(a.ranks)]
 check = Checks()
 
 
+def macro(ranks, sets, out_dir, *flags):
+    """uhpc-macro with --set `sets`, over `ranks` ranks (1: no launcher), into out_dir."""
+    launcher = [] if ranks == 1 else a.mpirun.split() + [str(ranks)]
+    sets = [x for s in sets for x in ("--set", s)]
+    return run([*launcher, a.macro, "--config", a.case, *sets, "-q", "--out", str(out_dir), *flags])
+
+
+def succeeded(name, what, done):
+    check(done.returncode == 0, f"{name}: {what} exits 0" + ("" if done.returncode == 0 else f": {done.stderr.strip()[-500:]}"))
+    return done.returncode == 0
+
+
 def compare(name, extra):
     """The shot with --set `extra` in one process and over the ranks, in out/name/{one,many}."""
-    sets = [x for s in SMALL_DISC + extra for x in ("--set", s)]
     here = out / name
-    one = run([a.macro, "--config", a.case, *sets, "-q", "--out", str(here / "one")])
-    many = run([*mpirun, a.macro, "--config", a.case, *sets, "-q", "--out", str(here / "many")])
-    for what, done in (("one process", one), (f"{a.ranks} ranks", many)):
-        check(done.returncode == 0,
-              f"{name}: {what} exits 0" + ("" if done.returncode == 0 else f": {done.stderr.strip()[-500:]}"))
-    if one.returncode or many.returncode:
-        return
-    r1 = json.loads((here / "one" / "result.json").read_text())
-    rn = json.loads((here / "many" / "result.json").read_text())
+    one = macro(1, SMALL_DISC + extra, here / "one")
+    many = macro(a.ranks, SMALL_DISC + extra, here / "many")
+    if succeeded(name, "one process", one) & succeeded(name, f"{a.ranks} ranks", many):
+        return same_shot(name, here / "one", here / "many", a.ranks)
+
+
+def same_shot(name, one_dir, many_dir, ranks):
+    """The outputs of many_dir (a run over `ranks` ranks) against one_dir's (one process)."""
+    r1 = json.loads((one_dir / "result.json").read_text())
+    rn = json.loads((many_dir / "result.json").read_text())
     check(r1["outcome"] == "perforated", f"{name}: the shot perforates ({r1['outcome']})")
     differ = [key for key in EXACT if r1[key] != rn[key]]
     check(not differ, f"{name}: result.json {', '.join(EXACT[:3])} ... the same ({differ}); residual velocity "
           f"{rn['residual_velocity_m_s']!r} ({r1['residual_velocity_m_s']!r} in one process)")
-    check(rn.get("ranks") == a.ranks and r1.get("ranks") == 1, f"{name}: result.json records the ranks ({rn.get('ranks')})")
+    check(rn.get("ranks") == ranks and r1.get("ranks") == 1, f"{name}: result.json records the ranks ({rn.get('ranks')})")
     put_in = r1["energy"]["initial_kinetic_J"] + abs(r1["energy"]["external_work_J"])
     worst = max(abs(rn["energy"][k] - r1["energy"][k]) / put_in for k in r1["energy"] if "error" not in k)
     check(worst <= BOOKS, f"{name}: energy books within {BOOKS:g} of the energy put in ({worst:.2e})")
@@ -95,12 +109,12 @@ def compare(name, extra):
     check(abs(rn["momentum"]["worst_balance_error"] - r1["momentum"]["worst_balance_error"]) <= BOOKS,
           f"{name}: the momentum balance is unchanged")
     for file in ("fields.h5", "sphere.h5"):
-        d1, dn = datasets(here / "one" / file), datasets(here / "many" / file)
+        d1, dn = datasets(one_dir / file), datasets(many_dir / file)
         differ = [k for k in d1 if k not in dn or not np.array_equal(d1[k], dn[k])]
         check(len(d1) > 0 and d1.keys() == dn.keys() and not differ,
               f"{name}: {file}: {len(d1)} datasets, the same bits ({len(differ)} differ: {differ[:3]})")
-    h1, v1 = history(here / "one" / "history.csv")
-    hn, vn = history(here / "many" / "history.csv")
+    h1, v1 = history(one_dir / "history.csv")
+    hn, vn = history(many_dir / "history.csv")
     check(h1 == hn and v1.shape == vn.shape, f"{name}: history.csv: the same columns and {len(v1)} rows")
     if h1 == hn and v1.shape == vn.shape:
         books = [i for i, c in enumerate(h1) if c.endswith("_J") or c.startswith("momentum")]
@@ -121,10 +135,25 @@ if lazy:
     check(lazy["shape_rows_kept_fraction"] > 0.2, f"lazy rows kept rows ({lazy['shape_rows_kept_fraction']:.2f})")
 compare("rows_rebuilt", ["solver.shape_reuse_tolerance=0"])
 
+# Checkpoints: the shot stopped undecided at 20 us (its checkpoint written at the end, and the rows dropped
+# every 50 steps) and carried on to 40 us with --restart, the second half at another rank count.
+legs = SMALL_DISC + ["run.checkpoint_interval_steps=50"]
+later = 1 if a.ranks == 2 else a.ranks - 1
+name = f"checkpoint ({a.ranks} then {later} rank{'s' if later > 1 else ''})"
+ok = True
+for ranks, where in ((1, out / "restart" / "one"), (a.ranks, out / "restart" / "many")):
+    ok &= succeeded(name, f"{ranks} rank(s) to 20 us", macro(ranks, legs + ["run.end_time_s=2e-5"], where))
+    ok &= (where / "checkpoint.h5").is_file()
+    again = 1 if ranks == 1 else later
+    ok &= succeeded(name, f"{again} rank(s) on to 40 us", macro(again, legs + ["run.end_time_s=4e-5"], where, "--restart"))
+check(ok, f"{name}: both halves run, the first leaves its checkpoint")
+if ok:
+    same_shot(name, out / "restart" / "one", out / "restart" / "many", later)
+
 refused = run([*mpirun, a.macro, "--config", a.case, *[x for s in SMALL_DISC for x in ("--set", s)],
-               "--set", "run.checkpoint_interval_steps=50", "-q", "--out", str(out / "refused")])
+               "--set", "run.fields=\"full\"", "-q", "--out", str(out / "refused")])
 errors = [line for line in refused.stderr.splitlines() if line.startswith("error:")]
-check(refused.returncode == 2, f"checkpoints over {a.ranks} ranks: exit 2 ({refused.returncode})")
-check(len(errors) == 1 and "run.checkpoint_interval_steps" in errors[0] and "not distributed yet" in errors[0],
+check(refused.returncode == 2, f"the full field set over {a.ranks} ranks: exit 2 ({refused.returncode})")
+check(len(errors) == 1 and "run.fields" in errors[0] and "not distributed yet" in errors[0],
       f"one error line naming the key: {errors}")
 check.exit()
