@@ -1,7 +1,6 @@
 // uhpc_distributed_steps: the distributed step (distributed/distributed_run.hpp) on a real case, with its
-// costs. Under mpirun -np N: the case's first `steps` steps over the ranks, rows rebuilt every step
-// (lazy rows are not distributed yet: solver.shape_reuse_tolerance is set to 0, in the one-process run
-// too). Prints on rank 0 the particles, the largest rank's ghosts, the halo builds (each a migration,
+// costs. Under mpirun -np N: the case's first `steps` steps over the ranks, with the case's RK rows
+// (the shipped lazy rows; solver.shape_reuse_tolerance=0 rebuilds every row each step). Prints on rank 0 the particles, the largest rank's ghosts, the halo builds (each a migration,
 // a new halo and new rank solvers made from the particles' records), and the wall times of the steps
 // and of the halo builds within them. serial=1: rank 0 then runs the same steps in one process, reports
 // its time and compares the sphere's state and every particle's record bit for bit (one thread a rank
@@ -46,7 +45,6 @@ int main(int argc, char** argv) {
       else if (a.rfind("serial=", 0) == 0) serial = a.substr(7) == "1";
       else overrides.push_back(a);
     }
-    overrides.push_back("solver.shape_reuse_tolerance=0");
     const uhpc::Config cfg = uhpc::Config::load(argv[1], overrides);
     const CaseSettings s = read_case(cfg);
     const ParticleBody body = make_target_body(s.target);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -55,14 +56,16 @@ std::vector<int> displacements(const std::vector<int>& counts) {
 
 // Lazy rows travel with their particles: the rows of the particles `ids` (ascending) of a new rank
 // solver, each from the solver `old` of the rank that owned it (old_ids, old_owned: that solver's
-// particles). The records go into `blob`; one pointer a particle, in the order of ids. Collective.
+// particles). The records go into `blob`; one pointer a particle, in the order of ids. A rank's own rows
+// are written straight into it, the others' come through MPI_Alltoallv. Collective.
 std::vector<const double*> rows_from_owners(MPI_Comm comm, std::size_t total, const ExplicitSolver& old,
                                             const std::vector<std::uint32_t>& old_ids,
                                             const std::vector<std::uint8_t>& old_owned,
                                             const std::vector<std::uint32_t>& ids, std::vector<double>& blob) {
-  int size = 1;
+  int size = 1, rank = 0;
   MPI_Comm_size(comm, &size);
-  const std::size_t ranks = static_cast<std::size_t>(size);
+  MPI_Comm_rank(comm, &rank);
+  const std::size_t ranks = static_cast<std::size_t>(size), me = static_cast<std::size_t>(rank);
   // Who owned each particle.
   std::vector<std::uint32_t> mine;
   for (std::size_t i = 0; i < old_ids.size(); ++i)
@@ -76,41 +79,59 @@ std::vector<const double*> rows_from_owners(MPI_Comm comm, std::size_t total, co
   std::vector<int> owner(total, -1);
   for (std::size_t r = 0, k = 0; r < ranks; ++r)
     for (int c = 0; c < counts[r]; ++c) owner[every[k++]] = static_cast<int>(r);
-  // Each rank asks the owners for its particles' rows, in ascending ids per owner.
+  const auto old_index = [&](std::uint32_t id) {
+    return static_cast<std::size_t>(std::lower_bound(old_ids.begin(), old_ids.end(), id) - old_ids.begin());
+  };
+  // Each rank asks the other owners for its particles' rows, in ascending ids per owner.
   std::vector<int> ask(ranks, 0), asked(ranks);
   for (const std::uint32_t id : ids) ++ask[static_cast<std::size_t>(owner[id])];
+  ask[me] = 0;
   MPI_Alltoall(ask.data(), 1, MPI_INT, asked.data(), 1, MPI_INT, comm);
   const std::vector<int> ask_at = displacements(ask), asked_at = displacements(asked);
-  std::vector<std::uint32_t> questions(ids.size()), requests(static_cast<std::size_t>(asked_at.back() + asked.back()));
+  std::vector<std::uint32_t> questions(static_cast<std::size_t>(ask_at.back() + ask.back()));
+  std::vector<std::uint32_t> requests(static_cast<std::size_t>(asked_at.back() + asked.back()));
   std::vector<int> filled = ask_at;
-  for (const std::uint32_t id : ids) questions[static_cast<std::size_t>(filled[static_cast<std::size_t>(owner[id])]++)] = id;
+  for (const std::uint32_t id : ids)
+    if (static_cast<std::size_t>(owner[id]) != me)
+      questions[static_cast<std::size_t>(filled[static_cast<std::size_t>(owner[id])]++)] = id;
   MPI_Alltoallv(questions.data(), ask.data(), ask_at.data(), MPI_UINT32_T, requests.data(), asked.data(),
                 asked_at.data(), MPI_UINT32_T, comm);
-  // The owners answer with the records, rank by rank.
-  std::vector<double> answers;
+  // The owners answer with the records, rank by rank, each buffer sized once.
   std::vector<int> answer_size(ranks, 0), answered(ranks);
+  std::size_t answer_total = 0, own_total = 0;
   for (std::size_t r = 0; r < ranks; ++r) {
-    const std::size_t before = answers.size();
-    for (int k = 0; k < asked[r]; ++k) {
-      const std::uint32_t id = requests[static_cast<std::size_t>(asked_at[r] + k)];
-      const auto at = std::lower_bound(old_ids.begin(), old_ids.end(), id) - old_ids.begin();
-      old.append_row(static_cast<std::size_t>(at), answers);
-    }
-    answer_size[r] = as_count(answers.size() - before);
+    std::size_t doubles = 0;
+    for (int k = 0; k < asked[r]; ++k)
+      doubles += old.row_record_length(old_index(requests[static_cast<std::size_t>(asked_at[r] + k)]));
+    answer_size[r] = as_count(doubles);
+    answer_total += doubles;
   }
+  for (const std::uint32_t id : ids)
+    if (static_cast<std::size_t>(owner[id]) == me) own_total += old.row_record_length(old_index(id));
+  std::vector<double> answers(answer_total);
+  double* out = answers.data();
+  for (const std::uint32_t id : requests) out = old.write_row(old_index(id), out);
   MPI_Alltoall(answer_size.data(), 1, MPI_INT, answered.data(), 1, MPI_INT, comm);
   const std::vector<int> answered_at = displacements(answered);
-  blob.assign(static_cast<std::size_t>(answered_at.back() + answered.back()), 0.0);
+  const std::size_t received = static_cast<std::size_t>(answered_at.back() + answered.back());
+  blob.resize(received + own_total);
   MPI_Alltoallv(answers.data(), answer_size.data(), displacements(answer_size).data(), MPI_DOUBLE, blob.data(),
                 answered.data(), answered_at.data(), MPI_DOUBLE, comm);
-  // Each owner's records came in the order they were asked for: ascending ids.
+  answers = std::vector<double>();
+  // The own rows after the received ones; each owner's records in the order they were asked for.
   std::vector<std::size_t> next(ranks);
   for (std::size_t r = 0; r < ranks; ++r) next[r] = static_cast<std::size_t>(answered_at[r]);
+  double* own = blob.data() + received;
   std::vector<const double*> records(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {
-    std::size_t& at = next[static_cast<std::size_t>(owner[ids[i]])];
-    records[i] = blob.data() + at;
-    at += static_cast<std::size_t>(blob[at]);  // the record's length
+    const std::size_t from = static_cast<std::size_t>(owner[ids[i]]);
+    if (from == me) {
+      records[i] = own;
+      own = old.write_row(old_index(ids[i]), own);
+    } else {
+      records[i] = blob.data() + next[from];
+      next[from] += static_cast<std::size_t>(blob[next[from]]);  // the record's length
+    }
   }
   return records;
 }
@@ -179,28 +200,35 @@ void DistributedRun::build_local(bool from_records) {
   for (std::size_t i = 0; i < local.size(); ++i)
     if (!owned_mask_[i]) ghost_at_.push_back(i);
 
-  auto solver = std::make_unique<ExplicitSolver>(factory_(local_ids_));
-  if (solver->particles().n != local_ids_.size()) throw std::logic_error("DistributedRun: the factory gave a solver of another size");
-  solver->set_rank_share(rank_share(comm_.get(), owned_mask_, local_ids_));
-  if (from_records) {  // the particles from their records, the run's state from the solver it replaces
-    for (std::size_t i = 0; i < local.size(); ++i) solver->read_particle(i, local.at(i));
-    solver->continue_from(*solver_);
-    // And the rows as their owners kept them (none after a drop: every rank built them afresh then).
-    if (solver->lazy_rows() && solver_->shapes().has_rows(solver_->particles().n)) {
-      std::vector<double> blob;
-      const std::vector<const double*> rows =
-          rows_from_owners(comm_.get(), total_, *solver_, old_ids, old_owned, local_ids_, blob);
-      solver->install_rows(rows, [this](std::uint32_t id) {
-        const auto at = std::lower_bound(local_ids_.begin(), local_ids_.end(), id);
-        return at != local_ids_.end() && *at == id ? static_cast<std::int32_t>(at - local_ids_.begin()) : -1;
-      });
-    }
-  } else {
-    solver->initialize();
+  // What the new solver takes from the one it replaces: the run's state and (lazy rows) the rows as their
+  // owners kept them (none after a drop: every rank builds them afresh then). The old solver is freed
+  // before the new one is made, so that a rank never holds two.
+  std::optional<ExplicitSolver::RunState> run;
+  std::vector<double> blob;
+  std::vector<const double*> rows;
+  if (from_records) {
+    run = solver_->run_state();
+    if (solver_->lazy_rows() && solver_->shapes().has_rows(solver_->particles().n))
+      rows = rows_from_owners(comm_.get(), total_, *solver_, old_ids, old_owned, local_ids_, blob);
   }
   if (solver_) {
     rows_built_ += solver_->shapes().rows_built;
     rows_kept_ += solver_->shapes().rows_kept;
+    solver_.reset();
+  }
+  auto solver = std::make_unique<ExplicitSolver>(factory_(local_ids_));
+  if (solver->particles().n != local_ids_.size()) throw std::logic_error("DistributedRun: the factory gave a solver of another size");
+  solver->set_rank_share(rank_share(comm_.get(), owned_mask_, local_ids_));
+  if (from_records) {  // the particles from their records
+    for (std::size_t i = 0; i < local.size(); ++i) solver->read_particle(i, local.at(i));
+    solver->continue_from(*run);
+    if (!rows.empty())
+      solver->install_rows(rows, [this](std::uint32_t id) {
+        const auto at = std::lower_bound(local_ids_.begin(), local_ids_.end(), id);
+        return at != local_ids_.end() && *at == id ? static_cast<std::int32_t>(at - local_ids_.begin()) : -1;
+      });
+  } else {
+    solver->initialize();
   }
   solver_ = std::move(solver);
   // A fresh solver's ghosts hold their own forces of the initial state (their rows are not all here).

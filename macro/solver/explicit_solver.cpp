@@ -146,10 +146,12 @@ void ExplicitSolver::set_rank_share(RankShare share) {
   shapes_ = empty_shape_cache();
 }
 
-void ExplicitSolver::append_row(std::size_t i, std::vector<double>& out) const {
-  if (!share_ || !initialized_) throw std::logic_error("ExplicitSolver::append_row: for a distributed run's rank solvers");
-  shapes_.append_row(i, share_->ids.data(), out);
+std::size_t ExplicitSolver::row_record_length(std::size_t i) const {
+  if (!share_ || !initialized_) throw std::logic_error("ExplicitSolver::row_record_length: for a distributed run's rank solvers");
+  return shapes_.row_record_length(i);
 }
+
+double* ExplicitSolver::write_row(std::size_t i, double* out) const { return shapes_.write_row(i, share_->ids.data(), out); }
 
 void ExplicitSolver::install_rows(const std::vector<const double*>& records,
                                   const std::function<std::int32_t(std::uint32_t)>& local_of) {
@@ -169,17 +171,27 @@ void ExplicitSolver::ranks_sum(std::initializer_list<double*> values) const {
   for (double* v : values) *v = sums[k++];
 }
 
-void ExplicitSolver::continue_from(const ExplicitSolver& previous) {
+ExplicitSolver::RunState ExplicitSolver::run_state() const {
+  if (!initialized_) throw std::logic_error("ExplicitSolver::run_state: the solver is not initialized");
+  RunState run{st_, counters_, domain_};
+  run.state.f_ext_old.clear();  // the particles' own, which travel in their records
+  run.state.f_contact_old.clear();
+  return run;
+}
+
+void ExplicitSolver::continue_from(const ExplicitSolver& previous) { continue_from(previous.run_state()); }
+
+void ExplicitSolver::continue_from(const RunState& run) {
   if (initialized_) throw std::logic_error("ExplicitSolver::continue_from: the solver is already initialized");
-  if (!share_ || !previous.initialized_) throw std::logic_error("ExplicitSolver::continue_from: for a distributed run's rank solvers");
-  if (st_.sphere.has_value() != previous.st_.sphere.has_value())
+  if (!share_) throw std::logic_error("ExplicitSolver::continue_from: for a distributed run's rank solvers");
+  if (st_.sphere.has_value() != run.state.sphere.has_value())
     throw std::invalid_argument("ExplicitSolver::continue_from: the solvers disagree on the sphere");
   std::vector<double> f_ext_old = std::move(st_.f_ext_old), f_contact_old = std::move(st_.f_contact_old);  // read_particle's
-  st_ = previous.st_;
+  st_ = run.state;
   st_.f_ext_old = std::move(f_ext_old);
   st_.f_contact_old = std::move(f_contact_old);
-  counters_ = previous.counters_;
-  domain_ = previous.domain_;
+  counters_ = run.counters;
+  domain_ = run.domain;
   if (st_.sphere) sphere_contact_.initialize(*st_.sphere, p_, &*share_);
   drop_shape_cache();
   save_state();

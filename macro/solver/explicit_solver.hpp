@@ -149,11 +149,20 @@ class ExplicitSolver {
   // replaces (the time, step, books, sphere and domain are the run's, the same on every rank). The rows
   // are built at the next step, or, lazy rows, installed next (install_rows).
   void continue_from(const ExplicitSolver& previous);
+  // The same from the run's state alone (run_state of the solver it replaces, which may be gone by then).
+  struct RunState {
+    StepState state;  // without the particles' last forces (f_ext_old, f_contact_old: read_particle's)
+    StepCounters counters;
+    Region domain;
+  };
+  RunState run_state() const;
+  void continue_from(const RunState& run);
   // Lazy rows (shape_reuse_tolerance > 0) travel with their particles between a distributed run's
-  // rank solvers: particle i's row as a record (ShapeCache::append_row, its nodes by global id), and, after
+  // rank solvers: particle i's row as a record (ShapeCache::write_row, its nodes by global id), and, after
   // continue_from, every particle's row installed from the records of the solvers it came from, in
   // place of rows built afresh (which would differ: a kept row holds the configuration it was built in).
-  void append_row(std::size_t i, std::vector<double>& out) const;
+  std::size_t row_record_length(std::size_t i) const;
+  double* write_row(std::size_t i, double* out) const;
   void install_rows(const std::vector<const double*>& records, const std::function<std::int32_t(std::uint32_t)>& local_of);
   bool lazy_rows() const { return options_.shape_reuse_tolerance > 0.0; }
   bool distributed() const { return share_.has_value(); }

@@ -282,20 +282,25 @@ void ShapeCache::find_with_skin(const double* x, const double* support_radius, s
 // The record: its length in doubles, the slot, the size, info (path, basis, rcond), hess_path, then the
 // nodes' ids, their build offsets (3 floats as doubles: exact), the gradients (3) and the second
 // gradients (6, when kept) of every entry.
-void ShapeCache::append_row(std::size_t p, const std::uint32_t* ids, std::vector<double>& out) const {
-  if (!lazy()) throw std::logic_error("ShapeCache::append_row: for lazy rows");
+std::size_t ShapeCache::row_record_length(std::size_t p) const {
+  if (!lazy()) throw std::logic_error("ShapeCache::row_record_length: for lazy rows");
+  return static_cast<std::size_t>(7 + lazy_size_[p] * (has_second_gradients() ? 13 : 7));
+}
+
+double* ShapeCache::write_row(std::size_t p, const std::uint32_t* ids, double* out) const {
   const std::int64_t b = lazy_offsets_[p], size = lazy_size_[p];
-  out.push_back(static_cast<double>(7 + size * (has_second_gradients() ? 13 : 7)));
-  out.push_back(static_cast<double>(lazy_offsets_[p + 1] - b));
-  out.push_back(static_cast<double>(size));
-  out.push_back(static_cast<double>(static_cast<int>(info[p].path)));
-  out.push_back(static_cast<double>(static_cast<int>(info[p].basis)));
-  out.push_back(info[p].rcond);
-  out.push_back(has_second_gradients() ? static_cast<double>(static_cast<int>(hess_path[p])) : 0.0);
-  for (std::int64_t k = 0; k < size; ++k) out.push_back(static_cast<double>(ids[lazy_nodes_[b + k]]));
-  out.insert(out.end(), built_offset_.begin() + 3 * b, built_offset_.begin() + 3 * (b + size));
-  out.insert(out.end(), grad.begin() + 3 * b, grad.begin() + 3 * (b + size));
-  if (has_second_gradients()) out.insert(out.end(), hess.begin() + 6 * b, hess.begin() + 6 * (b + size));
+  *out++ = static_cast<double>(row_record_length(p));
+  *out++ = static_cast<double>(lazy_offsets_[p + 1] - b);
+  *out++ = static_cast<double>(size);
+  *out++ = static_cast<double>(static_cast<int>(info[p].path));
+  *out++ = static_cast<double>(static_cast<int>(info[p].basis));
+  *out++ = info[p].rcond;
+  *out++ = has_second_gradients() ? static_cast<double>(static_cast<int>(hess_path[p])) : 0.0;
+  for (std::int64_t k = 0; k < size; ++k) *out++ = static_cast<double>(ids[lazy_nodes_[b + k]]);
+  out = std::copy(built_offset_.begin() + 3 * b, built_offset_.begin() + 3 * (b + size), out);
+  out = std::copy(grad.begin() + 3 * b, grad.begin() + 3 * (b + size), out);
+  if (has_second_gradients()) out = std::copy(hess.begin() + 6 * b, hess.begin() + 6 * (b + size), out);
+  return out;
 }
 
 void ShapeCache::install_rows(std::size_t n, const std::vector<const double*>& records,

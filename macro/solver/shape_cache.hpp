@@ -145,11 +145,12 @@ struct ShapeCache {
   bool has_rows(std::size_t n) const { return (lazy() ? lazy_size_.size() : support.size()) == n && info.size() == n; }
 
   // Lazy rows as records, for a distributed run's particles that change rank (DistributedRun): row p
-  // appended to `out` as doubles, its nodes as their global ids ids[node]; and a table of n rows made
-  // from such records (records[p]: row p's), the nodes mapped to this table's points by local_of (-1:
+  // written at `out` as row_record_length(p) doubles (the first: that length), its nodes as their global
+  // ids ids[node], returning the end; and a table of n rows made from such records (records[p]: row p's), the nodes mapped to this table's points by local_of (-1:
   // not here). A row with a node not here is installed empty: a ghost's row no owned particle reads, made
   // again when it is next due. The rows then stand as after a prepare at the positions they came from.
-  void append_row(std::size_t p, const std::uint32_t* ids, std::vector<double>& out) const;
+  std::size_t row_record_length(std::size_t p) const;
+  double* write_row(std::size_t p, const std::uint32_t* ids, double* out) const;
   void install_rows(std::size_t n, const std::vector<const double*>& records,
                     const std::function<std::int32_t(std::uint32_t)>& local_of, const SecondGradientOptions* second);
 
