@@ -670,12 +670,26 @@ void copy_same_size(const std::vector<double>& from, std::vector<double>& to) {
   }
 }
 
-
-
 void check_size(const char* what, std::size_t got, std::size_t expected) {
   if (got != expected)
     throw std::invalid_argument(std::string("ExplicitSolver::resume: ") + what + ": " + std::to_string(got) +
                                 " values, the solver has " + std::to_string(expected));
+}
+
+// The checkpoint's particle fields in the order of kEvolvingFields, found by name (a file may list them in
+// another order), each checked to hold `particles` particles' values (as many a particle as p's).
+std::vector<const std::vector<double>*> checkpoint_fields(const SolverCheckpoint& c, const Particles& p,
+                                                          std::size_t particles) {
+  std::vector<const std::vector<double>*> fields;
+  for (const EvolvingField& f : kEvolvingFields) {
+    const auto it = std::find_if(c.particle_fields.begin(), c.particle_fields.end(),
+                                 [&](const auto& named) { return named.first == f.name; });
+    if (it == c.particle_fields.end())
+      throw std::invalid_argument(std::string("ExplicitSolver::resume: no particle field '") + f.name + "'");
+    check_size(f.name, it->second.size(), (p.*f.field).size() / std::max<std::size_t>(p.n, 1) * particles);
+    fields.push_back(&it->second);
+  }
+  return fields;
 }
 }  // namespace
 
@@ -702,7 +716,7 @@ void ExplicitSolver::restore_state() {
 }
 
 SolverCheckpoint ExplicitSolver::checkpoint() const {
-  if (share_) throw std::logic_error("ExplicitSolver::checkpoint: a distributed run's checkpoints are not implemented yet");
+  if (share_) throw std::logic_error("ExplicitSolver::checkpoint: for one process (a distributed run: its whole body's, adopt_run_state)");
   SolverCheckpoint c;
   for (const EvolvingField& f : kEvolvingFields) c.particle_fields.emplace_back(f.name, p_.*f.field);
   std::visit(
@@ -724,17 +738,8 @@ SolverCheckpoint ExplicitSolver::checkpoint() const {
 
 void ExplicitSolver::resume(const SolverCheckpoint& c) {
   if (!initialized_) throw std::logic_error("ExplicitSolver::resume: call after initialize()");
-  if (share_) throw std::logic_error("ExplicitSolver::resume: a distributed run's checkpoints are not implemented yet");
-  // The fields by name (a file may list them in another order), each of the solver's size.
-  std::vector<const std::vector<double>*> fields;
-  for (const EvolvingField& f : kEvolvingFields) {
-    const auto it = std::find_if(c.particle_fields.begin(), c.particle_fields.end(),
-                                 [&](const auto& named) { return named.first == f.name; });
-    if (it == c.particle_fields.end())
-      throw std::invalid_argument(std::string("ExplicitSolver::resume: no particle field '") + f.name + "'");
-    check_size(f.name, it->second.size(), (p_.*f.field).size());
-    fields.push_back(&it->second);
-  }
+  if (share_) throw std::logic_error("ExplicitSolver::resume: for one process (a distributed run's rank: resume_part)");
+  const std::vector<const std::vector<double>*> fields = checkpoint_fields(c, p_, p_.n);
   check_size("particle fields", c.particle_fields.size(), std::size(kEvolvingFields));
   const std::size_t state_bytes = std::visit(
       [](const auto& block) { return block.state.size() * sizeof(typename std::decay_t<decltype(block.state)>::value_type); },
@@ -763,16 +768,7 @@ void ExplicitSolver::resume_part(const SolverCheckpoint& c) {
     throw std::invalid_argument("ExplicitSolver::resume_part: the checkpoint holds no whole body");
   for (const std::uint32_t id : share_->ids)
     if (id >= total) throw std::invalid_argument("ExplicitSolver::resume_part: the checkpoint holds fewer particles than the run");
-  std::vector<const std::vector<double>*> fields;
-  for (const EvolvingField& f : kEvolvingFields) {
-    const auto it = std::find_if(c.particle_fields.begin(), c.particle_fields.end(),
-                                 [&](const auto& named) { return named.first == f.name; });
-    if (it == c.particle_fields.end())
-      throw std::invalid_argument(std::string("ExplicitSolver::resume_part: no particle field '") + f.name + "'");
-    const std::size_t w = (p_.*f.field).size() / std::max<std::size_t>(p_.n, 1);
-    check_size(f.name, it->second.size(), w * total);
-    fields.push_back(&it->second);
-  }
+  const std::vector<const std::vector<double>*> fields = checkpoint_fields(c, p_, total);
   const std::size_t bytes = std::visit([](const auto& b) { return sizeof(b.state[0]); }, material_);
   check_size("material state bytes", c.material_states.size(), bytes * total);
   if (c.state.sphere.has_value() != st_.sphere.has_value())

@@ -10,6 +10,7 @@ split into commands at &&, || and ;. Every command is checked without running th
                                the options, the subcommand and the required options must parse (exit 0);
   make -C pipelines ARGS       `make -n` of the same target and variables must succeed (the target exists);
   bash|python3 SCRIPT ARGS     the script must exist;
+  mpirun|srun OPTIONS build/... ARGS   the program's part as above (parsed in one process, no launcher);
 and every argument naming a file of the source tree (data/..., pipelines/...) must exist. The programs
 run in a scratch directory with data/ and pipelines/ linked; files under out/ that earlier commands of
 the manual would have written are empty stand-ins. Any other
@@ -25,6 +26,7 @@ import tempfile
 
 SEPARATORS = {"&&", "||", ";"}
 SOURCE_PREFIXES = ("data/", "pipelines/")
+LAUNCHERS = ("mpirun", "mpiexec", "srun")
 
 
 def code_lines(markdown):
@@ -70,6 +72,11 @@ def check(words, source, build, scratch):
         if value.startswith(SOURCE_PREFIXES) and not (source / value).exists():
             return f"{value}: no such file in the source tree"
     program = words[0]
+    if program in LAUNCHERS:  # the launcher's own options are its business: the program's must parse
+        started = [w for w in words[1:] if w.startswith("build/")]
+        if not started:
+            return f"{program}: launches none of the build's programs"
+        return check(words[words.index(started[0]):], source, build, scratch)
     if program.startswith("build/"):
         exe = build / program[len("build/"):]
         if not exe.is_file():
