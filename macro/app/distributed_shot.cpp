@@ -82,9 +82,7 @@ class DistributedShot final : public ShotStepper {
   }
 
   std::size_t fragment_particles() override {
-    const ExplicitSolver& s = run_.solver();
-    double count = 0.0;  // exact in a double
-    for (std::size_t i = 0; i < run_.owned().size(); ++i) count += run_.owned()[i] && s.shapes().fragment(i) ? 1.0 : 0.0;
+    double count = static_cast<double>(run_.owned_fragments());  // exact in a double
     MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
     return static_cast<std::size_t>(count);
   }

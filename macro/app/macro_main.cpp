@@ -35,11 +35,11 @@ int rank_of(const MaybeMpi&) { return 0; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Started by mpirun or srun, the ranks share the run (distributed_shot.hpp); alone, it is one process
-  // and MPI is not started.
+  // Started by mpirun or srun as one of several ranks, the ranks share the run (distributed_shot.hpp);
+  // otherwise it is one process and MPI is not started.
   MaybeMpi mpi;
 #ifdef UHPC_WITH_MPI
-  if (uhpc::macro::distributed::started_by_mpi_launcher()) mpi.emplace(&argc, &argv);
+  if (uhpc::macro::distributed::started_as_one_of_several_ranks()) mpi.emplace(&argc, &argv);
 #endif
   CLI::App app{"3D explicit RKPM penetration run: a rigid sphere into a particle target (result.json, "
                "history.csv, fields.h5 + fields.xdmf).",

@@ -205,8 +205,9 @@ void refuse_beyond_distributed(const Config& cfg, const CaseSettings& settings, 
     cfg.section("projectile").section("contact").fail("model", "the penalty contact is " + on_ranks);
 }
 
-// The case's solver in one process or its parts over the ranks, resumed from `resumed` when given.
-std::unique_ptr<ShotStepper> make_shot(const CaseSettings& settings, const ParticleBody& body, const MaterialSet& law,
+// The case's solver in one process or its parts over the ranks, resumed from `resumed` when given. One
+// process takes `law` over (its states are the solver's); the ranks' parts keep reading it.
+std::unique_ptr<ShotStepper> make_shot(const CaseSettings& settings, const ParticleBody& body, MaterialSet& law,
                                        int ranks, std::optional<ExplicitSolver>& one_process,
                                        const std::optional<RunCheckpoint>& resumed, const fs::path& checkpoint_file) {
   std::unique_ptr<ShotStepper> shot;
@@ -221,7 +222,7 @@ std::unique_ptr<ShotStepper> make_shot(const CaseSettings& settings, const Parti
 #endif
   (void)ranks;
   if (!shot) {
-    one_process.emplace(make_solver(settings, body, law));
+    one_process.emplace(make_solver(settings, body, std::move(law)));
     shot = std::make_unique<OneProcessShot>(*one_process);
   }
   if (resumed) {

@@ -48,9 +48,15 @@ int as_count(std::size_t n) {
   return static_cast<int>(n);
 }
 
+// Where each rank's part starts, with room for the last one's (MPI's counts and displacements are ints).
 std::vector<int> displacements(const std::vector<int>& counts) {
   std::vector<int> at(counts.size(), 0);
-  for (std::size_t r = 1; r < counts.size(); ++r) at[r] = at[r - 1] + counts[r - 1];
+  std::size_t sum = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    at[r] = as_count(sum);
+    sum += static_cast<std::size_t>(counts[r]);
+  }
+  as_count(sum);
   return at;
 }
 
@@ -214,6 +220,10 @@ void DistributedRun::build_local(bool from_records) {
   if (solver_) {
     rows_built_ += solver_->shapes().rows_built;
     rows_kept_ += solver_->shapes().rows_kept;
+    if (solver_->shapes().has_rows(solver_->particles().n)) {  // (else those of the solver before it)
+      fragments_at_build_ = 0;
+      for (std::size_t i = 0; i < old_owned.size(); ++i) fragments_at_build_ += old_owned[i] && solver_->shapes().fragment(i) ? 1 : 0;
+    }
     solver_.reset();
   }
   auto solver = std::make_unique<ExplicitSolver>(factory_(local_ids_));
@@ -222,17 +232,15 @@ void DistributedRun::build_local(bool from_records) {
   if (from_records) {  // the particles from their records
     for (std::size_t i = 0; i < local.size(); ++i) solver->read_particle(i, local.at(i));
     solver->continue_from(*run);
-    if (!rows.empty())
-      solver->install_rows(rows, [this](std::uint32_t id) {
-        const auto at = std::lower_bound(local_ids_.begin(), local_ids_.end(), id);
-        return at != local_ids_.end() && *at == id ? static_cast<std::int32_t>(at - local_ids_.begin()) : -1;
-      });
+    if (!rows.empty()) solver->install_rows(rows, [this](std::uint32_t id) { return local_index(id); });
   } else {
     solver->initialize();
   }
   solver_ = std::move(solver);
   // A fresh solver's ghosts hold their own forces of the initial state (their rows are not all here).
   if (!from_records) refresh_ghosts();
+  // Its lazy rows were laid out from what this rank holds: a ghost's slot may be short of its owner's.
+  if (!from_records && solver_->lazy_rows()) rows_from_their_owners();
   x_at_halo_ = solver_->particles().x;
   ++halo_builds_;
 }
@@ -279,6 +287,10 @@ void DistributedRun::refresh_ghosts() {
 }
 
 void DistributedRun::resume(const SolverCheckpoint& checkpoint) {
+  for (const auto& [name, values] : checkpoint.particle_fields)
+    if (name == "x" && values.size() != 3 * total_)
+      throw std::invalid_argument("the checkpoint holds " + std::to_string(values.size() / 3) + " particles, the run " +
+                                  std::to_string(total_));
   int failed = 0;
   std::string why;
   try {
@@ -295,10 +307,38 @@ void DistributedRun::resume(const SolverCheckpoint& checkpoint) {
   build_local(true);
 }
 
+std::int32_t DistributedRun::local_index(std::uint32_t id) const {
+  const auto at = std::lower_bound(local_ids_.begin(), local_ids_.end(), id);
+  return at != local_ids_.end() && *at == id ? static_cast<std::int32_t>(at - local_ids_.begin()) : -1;
+}
+
+std::size_t DistributedRun::owned_fragments() const {
+  const ShapeCache& shapes = solver_->shapes();
+  if (!shapes.has_rows(solver_->particles().n)) return fragments_at_build_;  // none built since the build
+  std::size_t count = 0;
+  for (const std::size_t i : owned_at_) count += shapes.fragment(i) ? 1 : 0;
+  return count;
+}
+
+// Every row of the rank as its owner holds it: the owned rows stay, a ghost's takes its owner's slot
+// (ShapeCache: a ghost's row laid out from a partial neighbourhood may have a short slot, and one that
+// came to touch an owned particle before the next halo build would then keep stale values where its
+// owner rebuilds). Collective.
+void DistributedRun::rows_from_their_owners() {
+  std::vector<double> blob;
+  const std::vector<const double*> rows =
+      rows_from_owners(comm_.get(), total_, *solver_, local_ids_, owned_mask_, local_ids_, blob);
+  solver_->install_rows(rows, [this](std::uint32_t id) { return local_index(id); });
+}
+
 bool DistributedRun::step() {
+  const std::size_t layouts = solver_->shapes().layouts;
   if (!solver_->step()) return false;
   refresh_ghosts();
-  if (reach_after_next_step() > skin_m_) {
+  const bool new_layout = solver_->lazy_rows() && solver_->shapes().layouts != layouts;  // on every rank alike
+  if (reach_after_next_step() <= skin_m_) {
+    if (new_layout) rows_from_their_owners();
+  } else {
     const auto t0 = std::chrono::steady_clock::now();
     pack_owned();
     partition_.rebalance_if_needed(owned_);

@@ -6,8 +6,9 @@
 // have moved that far by the end of the next step, the particles go to their regions' ranks (a migrate, or a new balance past the partition's
 // threshold), and the halo and the rank's solver are made again from the particles' records.
 // Lazy rows travel with their particles: at a halo build each rank takes its particles' rows from the
-// solvers of their former owners. Not yet (ExplicitSolver::set_rank_share refuses them): the penalty
-// contact, the Midpoint strain configuration; nor checkpoints (docs/cluster.md). uhpc-macro steps it through
+// solvers of their former owners, and after a new slot layout its ghosts' rows from their owners. Not
+// yet (ExplicitSolver::set_rank_share refuses them): the penalty contact, the Midpoint strain
+// configuration (docs/cluster.md). uhpc-macro steps it through
 // app/distributed_shot.cpp.
 // Every call is collective and assumes every rank gets through it: a caller that catches an exception
 // on one rank must end the job (MPI_Abort), as the others may be waiting for it.
@@ -62,12 +63,17 @@ class DistributedRun {
   // Lazy rows built and kept on this rank over the run (ShapeCache::rows_built, rows_kept of its solvers).
   std::size_t rows_built() const { return rows_built_ + solver_->shapes().rows_built; }
   std::size_t rows_kept() const { return rows_kept_ + solver_->shapes().rows_kept; }
+  // The rank's own particles that move as rigid fragments now (ShapeCache::fragment; after a halo build
+  // whose solver has built no rows yet, those of the solver it replaced).
+  std::size_t owned_fragments() const;
   double skin() const { return skin_m_; }
 
  private:
   void build_local(bool from_records);  // the halo and the rank's solver from owned_ (collective)
   void pack_owned();                     // the solver's owned particles into owned_
   void refresh_ghosts();                 // the owners' values into the ghosts (collective)
+  void rows_from_their_owners();         // lazy rows: every row as its owner holds it (collective)
+  std::int32_t local_index(std::uint32_t id) const;  // in the solver, -1: not here
   // The largest motion of a particle since the halo plus its travel in the next step, over the ranks
   // (collective): the halo is good while it is within the skin.
   double reach_after_next_step() const;
@@ -88,6 +94,7 @@ class DistributedRun {
   double kept_row_reach_m_ = 0.0;              // the halo's room for kept lazy rows
   std::size_t halo_builds_ = 0;
   std::size_t rows_built_ = 0, rows_kept_ = 0;  // those of the solvers replaced so far
+  std::size_t fragments_at_build_ = 0;           // owned_fragments() of the solver last replaced
   double halo_build_s_ = 0.0;
 };
 

@@ -6,9 +6,10 @@
 
 namespace uhpc::macro::distributed {
 
-// Whether a launcher started this process as one of a job's ranks (mpirun or mpiexec of Open MPI or
-// MPICH, srun with PMI or PMIx): what it leaves in the environment before MPI starts.
-bool started_by_mpi_launcher();
+// Whether a launcher started this process as one of several ranks of a job: the size it leaves in the
+// environment before MPI starts (Open MPI's mpirun, MPICH's PMI, Slurm's srun), the first found, above
+// 1. One task of srun -n1 (the pipelines' LAUNCH), or a program it starts, is not.
+bool started_as_one_of_several_ranks();
 
 class MpiSession {
  public:
