@@ -8,6 +8,8 @@
 // numerical failure, the last good state in fields.h5 and DIR/diagnostic.json (exit code 1). Bad input:
 // one line naming the file, key and reason, exit code 2. See macro/README.md.
 #include <cmath>
+#include <cstdio>
+#include <exception>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,7 +41,12 @@ int main(int argc, char** argv) {
   // otherwise it is one process and MPI is not started.
   MaybeMpi mpi;
 #ifdef UHPC_WITH_MPI
-  if (uhpc::macro::distributed::started_as_one_of_several_ranks()) mpi.emplace(&argc, &argv);
+  try {
+    if (uhpc::macro::distributed::started_as_one_of_several_ranks()) mpi.emplace(&argc, &argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: MPI did not start (%s): run without a launcher, or check the MPI installation\n", e.what());
+    return uhpc::kExitNumerical;
+  }
 #endif
   CLI::App app{"3D explicit RKPM penetration run: a rigid sphere into a particle target (result.json, "
                "history.csv, fields.h5 + fields.xdmf).",

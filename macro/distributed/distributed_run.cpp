@@ -186,7 +186,7 @@ DistributedRun::DistributedRun(MPI_Comm comm, std::size_t total, SolverFactory f
 void DistributedRun::build_local(bool from_records) {
   int empty = owned_.size() == 0 ? 1 : 0;  // decided together: a rank alone would leave the others waiting
   MPI_Allreduce(MPI_IN_PLACE, &empty, 1, MPI_INT, MPI_MAX, comm_.get());
-  if (empty) throw std::runtime_error("DistributedRun: a rank was left without particles; use fewer ranks");
+  if (empty) throw std::invalid_argument("DistributedRun: a rank was left without particles; use fewer ranks");
   const int width = owned_.width;
   std::vector<double> node_reach(owned_.size()), row_reach(owned_.size());
   for (std::size_t k = 0; k < owned_.size(); ++k) {
