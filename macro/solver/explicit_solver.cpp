@@ -179,18 +179,22 @@ ExplicitSolver::RunState ExplicitSolver::run_state() const {
   return run;
 }
 
-void ExplicitSolver::continue_from(const ExplicitSolver& previous) { continue_from(previous.run_state()); }
+// The run's step state and counters from another solver or a checkpoint, keeping this solver's own
+// particles' last forces (f_ext_old, f_contact_old: read_particle's, or the caller's to set).
+void ExplicitSolver::take_run_state(const StepState& state, const StepCounters& counters) {
+  std::vector<double> f_ext_old = std::move(st_.f_ext_old), f_contact_old = std::move(st_.f_contact_old);
+  st_ = state;
+  st_.f_ext_old = std::move(f_ext_old);
+  st_.f_contact_old = std::move(f_contact_old);
+  counters_ = counters;
+}
 
 void ExplicitSolver::continue_from(const RunState& run) {
   if (initialized_) throw std::logic_error("ExplicitSolver::continue_from: the solver is already initialized");
   if (!share_) throw std::logic_error("ExplicitSolver::continue_from: for a distributed run's rank solvers");
   if (st_.sphere.has_value() != run.state.sphere.has_value())
     throw std::invalid_argument("ExplicitSolver::continue_from: the solvers disagree on the sphere");
-  std::vector<double> f_ext_old = std::move(st_.f_ext_old), f_contact_old = std::move(st_.f_contact_old);  // read_particle's
-  st_ = run.state;
-  st_.f_ext_old = std::move(f_ext_old);
-  st_.f_contact_old = std::move(f_contact_old);
-  counters_ = run.counters;
+  take_run_state(run.state, run.counters);
   domain_ = run.domain;
   if (st_.sphere) sphere_contact_.initialize(*st_.sphere, p_, &*share_);
   drop_shape_cache();
@@ -784,27 +788,19 @@ void ExplicitSolver::resume_part(const SolverCheckpoint& c) {
     std::visit([&](auto& block) { std::memcpy(static_cast<void*>(&block.state[i]), c.material_states.data() + bytes * g, bytes); },
                material_);
   }
-  std::vector<double> f_ext_old = std::move(st_.f_ext_old), f_contact_old = std::move(st_.f_contact_old);
-  st_ = c.state;
+  take_run_state(c.state, c.counters);
   for (std::size_t i = 0; i < p_.n; ++i)
     for (std::size_t d = 0; d < 3; ++d) {
-      f_ext_old[3 * i + d] = c.state.f_ext_old[3 * share_->ids[i] + d];
-      f_contact_old[3 * i + d] = c.state.f_contact_old[3 * share_->ids[i] + d];
+      st_.f_ext_old[3 * i + d] = c.state.f_ext_old[3 * share_->ids[i] + d];
+      st_.f_contact_old[3 * i + d] = c.state.f_contact_old[3 * share_->ids[i] + d];
     }
-  st_.f_ext_old = std::move(f_ext_old);
-  st_.f_contact_old = std::move(f_contact_old);
-  counters_ = c.counters;
   drop_shape_cache();
   save_state();
 }
 
 void ExplicitSolver::adopt_run_state(const ExplicitSolver& run) {
   if (share_) throw std::logic_error("ExplicitSolver::adopt_run_state: for a solver of the whole body");
-  std::vector<double> f_ext_old = std::move(st_.f_ext_old), f_contact_old = std::move(st_.f_contact_old);  // read_particle's
-  st_ = run.st_;
-  st_.f_ext_old = std::move(f_ext_old);
-  st_.f_contact_old = std::move(f_contact_old);
-  counters_ = run.counters_;
+  take_run_state(run.st_, run.counters_);  // the particles' last forces are read_particle's
 }
 
 namespace {

@@ -145,11 +145,10 @@ class ExplicitSolver {
   // contact or the Midpoint configuration (std::invalid_argument).
   void set_rank_share(RankShare share);
   // In place of initialize(), for a distributed run's new rank solver (set_rank_share called, every
-  // particle's state already in through read_particle): the run goes on from `previous`, the solver it
-  // replaces (the time, step, books, sphere and domain are the run's, the same on every rank). The rows
-  // are built at the next step, or, lazy rows, installed next (install_rows).
-  void continue_from(const ExplicitSolver& previous);
-  // The same from the run's state alone (run_state of the solver it replaces, which may be gone by then).
+  // particle's state already in through read_particle): the run goes on from `run`, the run_state() of
+  // the solver it replaces, which may be gone by then (the time, step, books, sphere and domain are the
+  // run's, the same on every rank). The rows are built at the next step, or, lazy rows, installed next
+  // (install_rows).
   struct RunState {
     StepState state;  // without the particles' last forces (f_ext_old, f_contact_old: read_particle's)
     StepCounters counters;
@@ -269,6 +268,7 @@ class ExplicitSolver {
   std::vector<Wall> walls_;
   std::vector<PrescribedVelocity> prescribed_;
   ShapeCache shapes_;
+  void take_run_state(const StepState& state, const StepCounters& counters);  // keeps the particles' last forces
   ShapeCache empty_shape_cache() const;  // configured from options_, no rows
   // shapes_ were built at the current x (false after restore_state: they are the failed attempt's).
   bool shapes_at_x_ = false;
