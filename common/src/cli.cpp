@@ -24,7 +24,8 @@ std::string one_line(std::string text) {
 }
 
 int report(const std::string& prefix, const std::string& message, int code) {
-  std::cerr << prefix << one_line(message) << std::endl;
+  // One write: under mpirun a line written in pieces can be split by the launcher's own messages.
+  std::cerr << (prefix + one_line(message) + "\n") << std::flush;
   return code;
 }
 
