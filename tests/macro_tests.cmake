@@ -66,6 +66,7 @@ if(UHPC_MPI)
     endforeach()
   endfunction()
   uhpc_add_mpi_tests(unit.MacroDistributed unit_test_macro_distributed unit 180 1 2 3 4)
+  uhpc_add_test(unit unit/test_macro_huge_pages.cpp uhpc_macro_distributed)
   add_test(NAME unit.MacroDistributed.without_mpirun COMMAND unit_test_macro_distributed)
   set_tests_properties(unit.MacroDistributed.without_mpirun PROPERTIES LABELS unit TIMEOUT 180
                        ENVIRONMENT "${_uhpc_mpi_env}")

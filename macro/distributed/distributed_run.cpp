@@ -1,5 +1,7 @@
 #include "distributed/distributed_run.hpp"
 
+#include "distributed/huge_pages.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -145,6 +147,7 @@ std::vector<const double*> rows_from_owners(MPI_Comm comm, std::size_t total, co
 
 DistributedRun::DistributedRun(MPI_Comm comm, std::size_t total, SolverFactory factory, PartitionOptions options)
     : comm_(comm), factory_(std::move(factory)), partition_(comm, options), total_(total) {
+  advise_huge_pages_for_large_blocks();  // every halo build makes the rank's solver afresh (huge_pages.hpp)
   int rank = 0, size = 1;
   MPI_Comm_rank(comm_.get(), &rank);
   MPI_Comm_size(comm_.get(), &size);
