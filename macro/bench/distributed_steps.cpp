@@ -69,11 +69,13 @@ int main(int argc, char** argv) {
     const ParticleSet all = gather(run.owned_records(), MPI_COMM_WORLD, 0);
     double ghosts_max = max_over_ranks(static_cast<double>(most_ghosts));
     const double t_builds = max_over_ranks(run.halo_build_seconds());
+    const double t_exchanges = max_over_ranks(run.row_exchange_seconds());
     if (mpi.rank() == 0) {
       std::printf("%d ranks, %zu particles, %d steps%s: setup %.2f s, steps %.2f s (%.2f ms a step), %zu halo builds (%.2f s), "
-                  "most ghosts on a rank %.0f, sphere v_z %.6f m/s\n",
+                  "%zu row exchanges (%.2f s), most ghosts on a rank %.0f, sphere v_z %.6f m/s\n",
                   mpi.size(), body.size(), done, done < steps ? " (a step failed)" : "", t_setup, t_steps,
-                  1e3 * t_steps / std::max(done, 1), run.halo_builds(), t_builds, ghosts_max, run.solver().sphere().v[2]);
+                  1e3 * t_steps / std::max(done, 1), run.halo_builds(), t_builds, run.row_exchanges(), t_exchanges,
+                  ghosts_max, run.solver().sphere().v[2]);
       if (serial) {
         t0 = std::chrono::steady_clock::now();
         std::vector<std::uint32_t> ids(body.size());

@@ -181,6 +181,7 @@ DistributedRun::DistributedRun(MPI_Comm comm, std::size_t total, SolverFactory f
   kept_row_reach_m_ = 2.0 * start.options().shape_reuse_tolerance * cell_m_;
   if (!(skin_m_ > 0.0))
     throw std::invalid_argument("DistributedRun: the halo needs a Verlet skin (solver.neighbour_skin > 0)");
+  local_of_id_.assign(total, -1);
   partition_.balance(owned_);
   owned_.sort_by_id();
   build_local(false);
@@ -203,6 +204,8 @@ void DistributedRun::build_local(bool from_records) {
   sent_ = halo_->sent_rows();
   const ParticleSet local = halo_->local(owned_, &owned_at_);
   local_ids_ = local.id;
+  for (const std::uint32_t id : old_ids) local_of_id_[id] = -1;
+  for (std::size_t i = 0; i < local_ids_.size(); ++i) local_of_id_[local_ids_[i]] = static_cast<std::int32_t>(i);
   owned_mask_.assign(local.size(), 0);
   for (const std::size_t at : owned_at_) owned_mask_[at] = 1;
   ghost_at_.clear();
@@ -311,8 +314,7 @@ void DistributedRun::resume(const SolverCheckpoint& checkpoint) {
 }
 
 std::int32_t DistributedRun::local_index(std::uint32_t id) const {
-  const auto at = std::lower_bound(local_ids_.begin(), local_ids_.end(), id);
-  return at != local_ids_.end() && *at == id ? static_cast<std::int32_t>(at - local_ids_.begin()) : -1;
+  return id < local_of_id_.size() ? local_of_id_[id] : -1;
 }
 
 std::size_t DistributedRun::owned_fragments() const {
@@ -340,7 +342,12 @@ bool DistributedRun::step() {
   refresh_ghosts();
   const bool new_layout = solver_->lazy_rows() && solver_->shapes().layouts != layouts;  // on every rank alike
   if (reach_after_next_step() <= skin_m_) {
-    if (new_layout) rows_from_their_owners();
+    if (new_layout) {
+      const auto t0 = std::chrono::steady_clock::now();
+      rows_from_their_owners();
+      row_exchange_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      ++row_exchanges_;
+    }
   } else {
     const auto t0 = std::chrono::steady_clock::now();
     pack_owned();

@@ -59,6 +59,10 @@ class DistributedRun {
   const ParticleSet& owned_records();
   std::size_t halo_builds() const { return halo_builds_; }
   double halo_build_seconds() const { return halo_build_s_; }  // wall time in them, this rank
+  // The ghosts' rows taken from their owners after a new slot layout between halo builds, and the wall
+  // time in it on this rank.
+  std::size_t row_exchanges() const { return row_exchanges_; }
+  double row_exchange_seconds() const { return row_exchange_s_; }
   std::size_t balances() const { return partition_.balances(); }
   // Lazy rows built and kept on this rank over the run (ShapeCache::rows_built, rows_kept of its solvers).
   std::size_t rows_built() const { return rows_built_ + solver_->shapes().rows_built; }
@@ -86,6 +90,9 @@ class DistributedRun {
   std::unique_ptr<Halo> halo_;
   ParticleSet owned_;                          // the owned particles' records, sorted by id
   std::vector<std::uint32_t> local_ids_;       // the solver's particles' ids
+  // Each global id's place in the solver, -1 where not on this rank: one int a particle of the body (as
+  // rows_from_owners' owner map), for the rows' millions of node lookups at each installation.
+  std::vector<std::int32_t> local_of_id_;
   std::vector<std::uint8_t> owned_mask_;       // one a solver particle
   std::vector<std::size_t> owned_at_, ghost_at_;  // where owned_ and the halo's ghosts are in the solver
   std::vector<std::uint32_t> sent_;            // the rows of owned_ that are other ranks' ghosts
@@ -96,6 +103,8 @@ class DistributedRun {
   std::size_t rows_built_ = 0, rows_kept_ = 0;  // those of the solvers replaced so far
   std::size_t fragments_at_build_ = 0;           // owned_fragments() of the solver last replaced
   double halo_build_s_ = 0.0;
+  std::size_t row_exchanges_ = 0;
+  double row_exchange_s_ = 0.0;
 };
 
 }  // namespace uhpc::macro::distributed
