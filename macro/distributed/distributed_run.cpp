@@ -65,11 +65,13 @@ std::vector<int> displacements(const std::vector<int>& counts) {
 // Lazy rows travel with their particles: the rows of the particles `ids` (ascending) of a new rank
 // solver, each from the solver `old` of the rank that owned it (old_ids, old_owned: that solver's
 // particles). The records go into `blob`; one pointer a particle, in the order of ids. A rank's own rows
-// are written straight into it, the others' come through MPI_Alltoallv. Collective.
+// are written straight into it (or, with keep_own, left where they are: a null pointer), the others'
+// come through MPI_Alltoallv. Collective.
 std::vector<const double*> rows_from_owners(MPI_Comm comm, std::size_t total, const ExplicitSolver& old,
                                             const std::vector<std::uint32_t>& old_ids,
                                             const std::vector<std::uint8_t>& old_owned,
-                                            const std::vector<std::uint32_t>& ids, std::vector<double>& blob) {
+                                            const std::vector<std::uint32_t>& ids, std::vector<double>& blob,
+                                            bool keep_own = false) {
   int size = 1, rank = 0;
   MPI_Comm_size(comm, &size);
   MPI_Comm_rank(comm, &rank);
@@ -114,8 +116,9 @@ std::vector<const double*> rows_from_owners(MPI_Comm comm, std::size_t total, co
     answer_size[r] = as_count(doubles);
     answer_total += doubles;
   }
-  for (const std::uint32_t id : ids)
-    if (static_cast<std::size_t>(owner[id]) == me) own_total += old.row_record_length(old_index(id));
+  if (!keep_own)
+    for (const std::uint32_t id : ids)
+      if (static_cast<std::size_t>(owner[id]) == me) own_total += old.row_record_length(old_index(id));
   std::vector<double> answers(answer_total);
   double* out = answers.data();
   for (const std::uint32_t id : requests) out = old.write_row(old_index(id), out);
@@ -134,8 +137,8 @@ std::vector<const double*> rows_from_owners(MPI_Comm comm, std::size_t total, co
   for (std::size_t i = 0; i < ids.size(); ++i) {
     const std::size_t from = static_cast<std::size_t>(owner[ids[i]]);
     if (from == me) {
-      records[i] = own;
-      own = old.write_row(old_index(ids[i]), own);
+      records[i] = keep_own ? nullptr : own;
+      if (!keep_own) own = old.write_row(old_index(ids[i]), own);
     } else {
       records[i] = blob.data() + next[from];
       next[from] += static_cast<std::size_t>(blob[next[from]]);  // the record's length
@@ -325,14 +328,14 @@ std::size_t DistributedRun::owned_fragments() const {
   return count;
 }
 
-// Every row of the rank as its owner holds it: the owned rows stay, a ghost's takes its owner's slot
-// (ShapeCache: a ghost's row laid out from a partial neighbourhood may have a short slot, and one that
-// came to touch an owned particle before the next halo build would then keep stale values where its
-// owner rebuilds). Collective.
+// Every row of the rank as its owner holds it: the owned rows stay where they are (kept, not copied
+// through records), a ghost's takes its owner's slot (ShapeCache: a ghost's row laid out from a partial
+// neighbourhood may have a short slot, and one that came to touch an owned particle before the next
+// halo build would then keep stale values where its owner rebuilds). Collective.
 void DistributedRun::rows_from_their_owners() {
   std::vector<double> blob;
   const std::vector<const double*> rows =
-      rows_from_owners(comm_.get(), total_, *solver_, local_ids_, owned_mask_, local_ids_, blob);
+      rows_from_owners(comm_.get(), total_, *solver_, local_ids_, owned_mask_, local_ids_, blob, true);
   solver_->install_rows(rows, [this](std::uint32_t id) { return local_index(id); });
 }
 

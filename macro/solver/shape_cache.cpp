@@ -307,40 +307,62 @@ void ShapeCache::install_rows(std::size_t n, const std::vector<const double*>& r
                               const std::function<std::int32_t(std::uint32_t)>& local_of,
                               const SecondGradientOptions* second) {
   if (!lazy() || records.size() != n) throw std::logic_error("ShapeCache::install_rows: lazy rows, one record a point");
-  lazy_offsets_.assign(n + 1, 0);
-  for (std::size_t p = 0; p < n; ++p) lazy_offsets_[p + 1] = lazy_offsets_[p] + static_cast<std::int64_t>(records[p][1]);
-  const std::size_t slots = static_cast<std::size_t>(lazy_offsets_[n]);
-  lazy_nodes_.assign(slots, 0);
-  built_offset_.assign(3 * slots, 0.0f);
-  grad.assign(3 * slots, 0.0);
-  if (second) hess.assign(6 * slots, 0.0);
-  else hess.clear();
-  info.assign(n, rk::PointResult{});
-  hess_path.assign(second ? n : 0, SecondGradientPath::Empty);
-  lazy_size_.assign(n, 0);
-  due_.assign(n, 0);
+  const bool keeps = std::find(records.begin(), records.end(), nullptr) != records.end();
+  if (keeps && (!has_rows(n) || (second != nullptr) != (second_ != nullptr)))
+    throw std::logic_error("ShapeCache::install_rows: a row kept where there is none of its kind");
+  // The new table beside the old one, so that a kept row is copied straight from it.
+  std::vector<std::int64_t> offsets(n + 1, 0);
+  for (std::size_t p = 0; p < n; ++p)
+    offsets[p + 1] = offsets[p] + (records[p] ? static_cast<std::int64_t>(records[p][1]) : lazy_offsets_[p + 1] - lazy_offsets_[p]);
+  const std::size_t slots = static_cast<std::size_t>(offsets[n]);
+  std::vector<std::int32_t> nodes(slots, 0), sizes(n, 0);
+  std::vector<float> built_offset(3 * slots, 0.0f);
+  std::vector<double> g(3 * slots, 0.0), h(second ? 6 * slots : 0, 0.0);
+  std::vector<rk::PointResult> infos(n);
+  std::vector<SecondGradientPath> paths(second ? n : 0, SecondGradientPath::Empty);
   for (std::size_t p = 0; p < n; ++p) {
     const double* r = records[p];
-    const std::int64_t b = lazy_offsets_[p], size = static_cast<std::int64_t>(r[2]);
+    const std::int64_t b = offsets[p];
+    if (!r) {  // kept: its slot, nodes and values as they are
+      const std::int64_t from = lazy_offsets_[p], size = lazy_size_[p];
+      std::copy(lazy_nodes_.begin() + from, lazy_nodes_.begin() + from + size, nodes.begin() + b);
+      std::copy(built_offset_.begin() + 3 * from, built_offset_.begin() + 3 * (from + size), built_offset.begin() + 3 * b);
+      std::copy(grad.begin() + 3 * from, grad.begin() + 3 * (from + size), g.begin() + 3 * b);
+      if (second) std::copy(hess.begin() + 6 * from, hess.begin() + 6 * (from + size), h.begin() + 6 * b);
+      sizes[p] = static_cast<std::int32_t>(size);
+      infos[p] = info[p];
+      if (second) paths[p] = hess_path[p];
+      continue;
+    }
+    const std::int64_t size = static_cast<std::int64_t>(r[2]);
     const double* ids = r + 7;
     bool whole = true;
     for (std::int64_t k = 0; k < size && whole; ++k) {
       const std::int32_t j = local_of(static_cast<std::uint32_t>(ids[k]));
       whole = j >= 0;
-      lazy_nodes_[b + k] = j;
+      nodes[b + k] = j;
     }
     if (!whole) continue;  // empty: made again when next due
-    lazy_size_[p] = static_cast<std::int32_t>(size);
-    info[p] = {static_cast<rk::Path>(static_cast<int>(r[3])), static_cast<rk::Basis>(static_cast<int>(r[4])), r[5]};
-    if (second) hess_path[p] = static_cast<SecondGradientPath>(static_cast<int>(r[6]));
+    sizes[p] = static_cast<std::int32_t>(size);
+    infos[p] = {static_cast<rk::Path>(static_cast<int>(r[3])), static_cast<rk::Basis>(static_cast<int>(r[4])), r[5]};
+    if (second) paths[p] = static_cast<SecondGradientPath>(static_cast<int>(r[6]));
     const double* built = ids + size;
-    const double* g = built + 3 * size;
+    const double* gr = built + 3 * size;
     for (std::int64_t e = 0; e < 3 * size; ++e) {
-      built_offset_[3 * b + e] = static_cast<float>(built[e]);
-      grad[3 * b + e] = g[e];
+      built_offset[3 * b + e] = static_cast<float>(built[e]);
+      g[3 * b + e] = gr[e];
     }
-    if (second) std::copy(g + 3 * size, g + 9 * size, hess.begin() + 6 * b);
+    if (second) std::copy(gr + 3 * size, gr + 9 * size, h.begin() + 6 * b);
   }
+  lazy_offsets_ = std::move(offsets);
+  lazy_nodes_ = std::move(nodes);
+  lazy_size_ = std::move(sizes);
+  built_offset_ = std::move(built_offset);
+  grad = std::move(g);
+  hess = std::move(h);
+  info = std::move(infos);
+  hess_path = std::move(paths);
+  due_.assign(n, 0);
   second_ = second;
   longest_ = 0;
 }

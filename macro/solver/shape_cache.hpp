@@ -147,8 +147,9 @@ struct ShapeCache {
   // Lazy rows as records, for a distributed run's particles that change rank (DistributedRun): row p
   // written at `out` as row_record_length(p) doubles (the first: that length), its nodes as their global
   // ids ids[node], returning the end; and a table of n rows made from such records (records[p]: row p's), the nodes mapped to this table's points by local_of (-1:
-  // not here). A row with a node not here is installed empty: a ghost's row no owned particle reads, made
-  // again when it is next due. The rows then stand as after a prepare at the positions they came from.
+  // not here), or, where records[p] is null, row p kept as this table holds it (its slot included). A
+  // row with a node not here is installed empty: a ghost's row no owned particle reads, made again when
+  // it is next due. The rows then stand as after a prepare at the positions they came from.
   std::size_t row_record_length(std::size_t p) const;
   double* write_row(std::size_t p, const std::uint32_t* ids, double* out) const;
   void install_rows(std::size_t n, const std::vector<const double*>& records,

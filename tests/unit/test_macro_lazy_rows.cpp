@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <numeric>
 #include <stdexcept>
 #include <random>
 
@@ -172,6 +173,51 @@ void sphere_impact_stays_close_to_the_semi_lagrangian_run(SphereContactModel con
 TEST(MacroLazyRows, ASphereImpactStaysCloseToTheSemiLagrangianRun) {
   sphere_impact_stays_close_to_the_semi_lagrangian_run(SphereContactModel::Kinematic, 0.02);
   sphere_impact_stays_close_to_the_semi_lagrangian_run(SphereContactModel::Penalty, 0.05);
+}
+
+// A distributed run's row exchange (DistributedRun::rows_from_their_owners): rows written as records and
+// installed again, or kept where they are (a null record), leave the table as it was, slot by slot.
+TEST(MacroLazyRows, RowsInstalledFromRecordsOrKeptStandAsTheyWere) {
+  const auto shear = [](const double* x) -> Vec3 { return {300.0 * x[1], 0.0, -200.0 * x[0]}; };
+  ExplicitSolver solver = make_box(kTolerance, shear);
+  for (int s = 0; s < 40; ++s) ASSERT_TRUE(solver.step());
+  const ShapeCache& before = solver.shapes();
+  const std::size_t n = solver.particles().n;
+  ASSERT_TRUE(before.has_rows(n));
+  ASSERT_TRUE(before.has_second_gradients());  // NSNI's, so that the records carry them too
+  std::vector<std::uint32_t> ids(n);
+  std::iota(ids.begin(), ids.end(), 0u);
+  const auto recorded = [](std::size_t p) { return p % 3 != 0; };
+  std::size_t length = 0;
+  for (std::size_t p = 0; p < n; ++p) length += recorded(p) ? before.row_record_length(p) : 0;
+  std::vector<double> blob(length);
+  std::vector<const double*> records(n, nullptr);
+  double* out = blob.data();
+  for (std::size_t p = 0; p < n; ++p) {
+    if (!recorded(p)) continue;
+    records[p] = out;
+    out = before.write_row(p, ids.data(), out);
+  }
+
+  ShapeCache after = before;
+  const SecondGradientOptions second{};
+  after.install_rows(n, records, [](std::uint32_t id) { return static_cast<std::int32_t>(id); },
+                     before.has_second_gradients() ? &second : nullptr);
+  ASSERT_TRUE(after.has_rows(n));
+  EXPECT_EQ(after.has_second_gradients(), before.has_second_gradients());
+  for (std::size_t p = 0; p < n; ++p) {
+    ASSERT_EQ(after.row_begin(p), before.row_begin(p)) << p;
+    ASSERT_EQ(after.row_size(p), before.row_size(p)) << p;
+    EXPECT_EQ(after.info[p].path, before.info[p].path) << p;
+    EXPECT_EQ(after.info[p].rcond, before.info[p].rcond) << p;
+    const std::int64_t b = before.row_begin(p), size = before.row_size(p);
+    for (std::int64_t k = 0; k < size; ++k) {
+      ASSERT_EQ(after.row_nodes(p)[k], before.row_nodes(p)[k]) << p;
+      for (int d = 0; d < 3; ++d) ASSERT_EQ(after.grad[3 * (b + k) + d], before.grad[3 * (b + k) + d]) << p;
+      if (!before.has_second_gradients()) continue;
+      for (int d = 0; d < 6; ++d) ASSERT_EQ(after.hess[6 * (b + k) + d], before.hess[6 * (b + k) + d]) << p;
+    }
+  }
 }
 
 TEST(MacroLazyRows, ToleranceOutsideTheSkinIsRejected) {
