@@ -618,6 +618,7 @@ CellResponse Analysis::run(const FractureObserver& observer) {
   out_.growth_unloads = reload_.unloads();
   out_.jumps = books_.jumps();
   out_.factorizations = tangent_.factorizations();
+  out_.crack_geometries = static_cast<std::size_t>(stage_.id());
   out_.krylov_corrections = tangent_.krylov_corrections();
   out_.krylov_products = tangent_.krylov_products();
   out_.operator_energy_mismatch = books_.operator_mismatch();

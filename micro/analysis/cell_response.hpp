@@ -47,6 +47,7 @@ struct CellResponse {
   std::size_t growth_unloads = 0;    // growth events passed by unloading to zero (GrowthFallback)
   std::size_t jumps = 0;             // jumps taken by relaxation (JumpFallback::Relax, GrowthFallback::Relax)
   std::size_t factorizations = 0;    // numeric LU factorizations of the Newton matrix (the main cost)
+  std::size_t crack_geometries = 0;  // enriched models built (each crack geometry, and each restore of one)
   std::size_t krylov_corrections = 0;  // Newton corrections solved by GMRES with an earlier factorization
   std::size_t krylov_products = 0;     // GMRES iterations over all of them (one triangular solve each)
   // Largest |operator energy - (bulk + boundary energy)| over the states, relative to the largest

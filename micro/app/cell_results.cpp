@@ -219,6 +219,7 @@ nlohmann::json cell_summary_json(const CellJob& job, const CellResult& r, const 
   j["growth_unloads"] = resp.growth_unloads;
   j["jumps"] = resp.jumps;
   j["factorizations"] = resp.factorizations;
+  j["crack_geometries"] = resp.crack_geometries;
   j["krylov_corrections"] = resp.krylov_corrections;
   j["krylov_products"] = resp.krylov_products;
   j["operator_energy_mismatch"] = resp.operator_energy_mismatch;
@@ -333,6 +334,7 @@ std::optional<StoredCell> load_cell_results(const fs::path& dir, const std::stri
     r.factorizations = j.at("factorizations").get<std::size_t>();
     r.krylov_corrections = j.value("krylov_corrections", std::size_t{0});  // absent before revision 3
     r.krylov_products = j.value("krylov_products", std::size_t{0});
+    r.crack_geometries = j.value("crack_geometries", std::size_t{0});  // absent from the archived cells
     r.operator_energy_mismatch = j.at("operator_energy_mismatch").get<double>();
     r.wall_s = j.at("wall_s").get<double>();
     const std::lock_guard<std::mutex> lock(hdf5_mutex());

@@ -278,6 +278,7 @@ void crack_first_cell(benchmark::State& state, double size_m, int krylov) {
   state.counters["states"] = static_cast<double>(r.states.size());
   state.counters["peak_MPa"] = peak * 1e-6;
   state.counters["factorizations"] = static_cast<double>(r.factorizations);
+  state.counters["crack_geometries"] = static_cast<double>(r.crack_geometries);
   state.counters["krylov_products"] = static_cast<double>(r.krylov_products);
   state.counters["peak_rss_MiB"] = uhpc::peak_memory_MiB();
 }
