@@ -61,8 +61,7 @@ class Analysis {
         books_(o.energy_tolerance),
         steps_({o.opening_increment, o.min_opening_increment, o.max_opening_increment},
                {o.strain_increment, o.min_strain_increment, o.max_strain_increment}, o.step_growth),
-        opening_mode_(o.verification.zone_at_every_step),
-        round_(o.growth) {}
+        opening_mode_(o.verification.zone_at_every_step) {}
 
   CellResponse run(const FractureObserver& observer);
   const std::vector<Crack>& cracks() const { return stage_.cracks(); }
@@ -182,10 +181,6 @@ class Analysis {
   PathSteps steps_;
   OpeningMode opening_mode_;  // ZoneControl::Fallback: the global opening or the process zone's (path_modes.hpp)
   std::string jump_reason_;      // set where the path has no continuation: the next step is a jump
-  // The growth rounds of this step: o_.growth, except that a step which fails at its smallest size
-  // with rounds of several segments (GrowthOptions::segments_per_round) is retried with rounds of one,
-  // the reference algorithm, before it becomes a jump or a failure; the next accepted step goes back.
-  GrowthOptions round_;
 
   std::vector<TipCriterion> criteria();
   double max_ratio(const std::vector<TipCriterion>& t) const {
@@ -370,7 +365,7 @@ Analysis::GrowthRound Analysis::advance_and_equilibrate(const std::vector<std::s
     }
     bool grew = false;
     for (std::size_t k = 0; k < (attempt == 0 ? ready.size() : 1); ++k)
-      grew = advance_tip(stage_.cracks(), ready[k], t[ready[k]].direction, cell_, mesh_, round_) > 0 || grew;
+      grew = advance_crack(stage_.cracks(), ready[k], t[ready[k]].direction, cell_, mesh_, o_.growth) || grew;
     if (!grew) {
       if (attempt == 0) return {GrowthRound::NoGrowth, ""};
       break;
@@ -423,7 +418,7 @@ std::string Analysis::run_through(const std::vector<std::size_t>& ready, const s
                                   const Snapshot& before, const std::string& why, int& iterations) {
   // The grown crack has no equilibrium near this one: it runs (a jump at this strain).
   const double start = current_imbalance();
-  for (const std::size_t c : ready) advance_tip(stage_.cracks(), c, t[c].direction, cell_, mesh_, round_);
+  for (const std::size_t c : ready) advance_crack(stage_.cracks(), c, t[c].direction, cell_, mesh_, o_.growth);
   build_stage();
   if (const std::string r = relax(0.0, iterations); !r.empty()) {
     restore(before, true);
@@ -537,7 +532,7 @@ void Analysis::unload_and_advance(const std::vector<std::size_t>& ready, const s
   books_.book_unload(lambda_, F, dissipated(flat_history()));
   d_.setZero();
   lambda_ = 0.0;
-  for (const std::size_t c : ready) advance_tip(stage_.cracks(), c, t[c].direction, cell_, mesh_, round_);
+  for (const std::size_t c : ready) advance_crack(stage_.cracks(), c, t[c].direction, cell_, mesh_, o_.growth);
   build_stage();  // the new segments start at zero opening: equilibrium holds exactly
   reload_.unloaded(unload_strain, cell_.side_m, dissipated(flat_history()));
 }
@@ -722,10 +717,6 @@ bool Analysis::cut(const StepPlan& p, const Snapshot& start) {
 }
 
 Analysis::StepEnd Analysis::jump_or_fail(const StepPlan& p, const std::string& diagnostic) {
-  if (round_.segments_per_round > 1 && !p.jump) {  // (a failed jump has committed its pseudo-steps)
-    round_.segments_per_round = 1;
-    return StepEnd::Retry;
-  }
   // A failure at the smallest step becomes a jump, once (JumpFallback::Relax), else the cell fails.
   if (o_.jump == JumpFallback::Relax && !p.jump && reload_.phase() != ReloadPath::Phase::LinearStep) {
     jump_reason_ = diagnostic;
@@ -829,7 +820,6 @@ Analysis::StepEnd Analysis::path_step(int step) {
 
 Analysis::StepEnd Analysis::after_accepted(const StepPlan& p, int iterations) {
   const CellState& s = out_.states.back();
-  round_ = o_.growth;
   if (iterations <= o_.easy_iterations) steps_.grow(p.hold);
   // Back to the global opening once it grows again.
   if (p.zone && !opening_mode_.always_zone() && stage_.system().opening_integral(d_) > p.opening_before)

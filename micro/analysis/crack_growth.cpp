@@ -231,11 +231,4 @@ bool advance_crack(std::vector<Crack>& cracks, std::size_t c, const Vec2& direct
   return true;
 }
 
-int advance_tip(std::vector<Crack>& cracks, std::size_t c, const Vec2& direction, const CellGeometry& cell,
-                const CellDiscretization& mesh, const GrowthOptions& options) {
-  int added = 0;
-  while (added < options.segments_per_round && advance_crack(cracks, c, direction, cell, mesh, options)) ++added;
-  return added;
-}
-
 }  // namespace uhpc::micro

@@ -22,12 +22,6 @@ struct GrowthOptions {
   // the step shrink to nothing; without them two parallel cracks can overlap with an uncut sliver
   // between them (the residual ~2 MPa tail measured on that cell). Unfinished.
   double coalescence_spacings = 0.0;
-  // [choice] Segments a tip at f_t advances by in one growth round before the cell is re-equilibrated
-  // (advance_tip). 1 (default, the reference algorithm): every segment is checked against f_t at
-  // equilibrium. n > 1 grows n segments on the criterion of the first (straight on, or along the
-  // planned path), so a running crack passes through n times fewer crack geometries, at the price of
-  // overshooting an arrest by up to n - 1 segments. docs/studies/2026-12-08-micro-growth-rounds.md.
-  int segments_per_round = 1;
 };
 
 // Cracks from the cell's seeds: each seed is a planned path from its root (on its pore, or on the cell
@@ -59,11 +53,6 @@ std::vector<TipCriterion> tip_criteria(const std::vector<Crack>& cracks, const T
 // the crack could not advance.
 bool advance_crack(std::vector<Crack>& cracks, std::size_t c, const Vec2& direction, const CellGeometry& cell,
                    const CellDiscretization& mesh, const GrowthOptions& options);
-
-// One growth round of crack `c`: advance_crack up to options.segments_per_round times in
-// `direction`, stopping where the crack stops. Returns the segments added.
-int advance_tip(std::vector<Crack>& cracks, std::size_t c, const Vec2& direction, const CellGeometry& cell,
-                const CellDiscretization& mesh, const GrowthOptions& options);
 
 // Nodal spacing of the mesh node nearest to x.
 double local_spacing(const CellDiscretization& mesh, const Vec2& x);

@@ -55,7 +55,6 @@ CellAnalysisOptions read_cell_analysis_options(const Config& c, std::optional<do
   opt(c, "growth.increment_spacings", o.growth.increment_spacings, Range::closed(0.25, 4.0));
   opt(c, "growth.average_radius_spacings", o.growth.average_radius_spacings, Range::closed(0.5, 8.0));
   opt(c, "growth.coalescence_spacings", o.growth.coalescence_spacings, Range::closed(0.0, 4.0));
-  opt(c, "growth.segments_per_round", o.growth.segments_per_round, Range::closed(1, 16));
   opt(c, "growth.tolerance", o.growth_tolerance, Range::positive());
   opt(c, "growth.max_per_step", o.max_growth_per_step, Range::at_least(1));
   if (c.has("growth.fallback")) {

@@ -13,8 +13,7 @@
 //   enrichment.tip ("ramped"), enrichment.min_ratio,
 //   cohesive.activation_ratio (0, 0.1], cohesive.contact_penalty_ratio, cohesive.residual_stiffness_ratio
 //   (0, 1e-3], cohesive.mode ("mode_i" | "mixed"),
-//   growth.increment_spacings, growth.average_radius_spacings, growth.coalescence_spacings, growth.segments_per_round
-//   (1..16), growth.tolerance, growth.max_per_step,
+//   growth.increment_spacings, growth.average_radius_spacings, growth.coalescence_spacings, growth.tolerance, growth.max_per_step,
 //   path.control ("crack_opening" | "displacement"), path.elastic_states, path.opening_increment,
 //   path.min_opening_increment, path.max_opening_increment, path.strain_increment,
 //   path.min_strain_increment, path.max_strain_increment, path.step_growth, path.easy_iterations,

@@ -415,28 +415,6 @@ TEST(microCohesiveStrip, SeedsOfOnePoreWithKrylovCorrectionsGiveTheDirectAnswer)
   EXPECT_NEAR(a.states.back().dissipated_J_m / b.states.back().dissipated_J_m, 1.0, 1e-6);
 }
 
-// Growth rounds of three segments (growth.segments_per_round; the reference algorithm re-equilibrates after
-// every segment): the straight strip and the one-pore cell follow the reference's answer (the same peak
-// and dissipation, the physics checks of each case) through fewer crack geometries.
-TEST(microCohesiveStrip, StraightCrackInRoundsOfThreeSegmentsGivesTheSameAnswer) {
-  CellAnalysisOptions o;
-  o.growth.segments_per_round = 3;
-  const CellResponse r = check_straight_strip(o);
-  expect_same_answer(r);
-  EXPECT_LT(r.crack_geometries, check_straight_strip(CellAnalysisOptions{}).crack_geometries);
-}
-
-TEST(microCohesiveStrip, SeedsOfOnePoreInRoundsOfThreeSegmentsGiveTheSameAnswer) {
-  CellAnalysisOptions o;
-  o.growth.segments_per_round = 3;
-  const CellResponse a = check_one_pore(o), b = check_one_pore(CellAnalysisOptions{});
-  std::printf("crack geometries %zu in rounds of three segments, %zu in rounds of one\n", a.crack_geometries,
-              b.crack_geometries);
-  EXPECT_LT(a.crack_geometries, b.crack_geometries);
-  EXPECT_NEAR(peak_stress(a) / peak_stress(b), 1.0, 0.01);
-  EXPECT_NEAR(a.states.back().dissipated_J_m / b.states.back().dissipated_J_m, 1.0, 0.01);
-}
-
 // A paper cell (Burr pores at 3.4 %, two seeds per pore, 50 um spacing) to separation: a measurement,
 // not a check (minutes per cell), so disabled by default. UHPC_CELL_SIZE (m, default 0.003) and
 // UHPC_CELL_SEED (default 1) choose the cell. Prints the peak, the strain at d = 0.5, steps and time.
