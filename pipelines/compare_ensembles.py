@@ -134,6 +134,10 @@ def pct(x):
     return "n/a" if x is None or not math.isfinite(x) else f"{100.0 * x:+.2f} %"
 
 
+def count(n):
+    return "n/a" if n is None else str(n)
+
+
 def markdown(result):
     lines = ["| size mm | pairs | peak MPa ref / new | e(d=0.5) ref / new | dissipation kJ/m^3 ref / new | "
              "mean damage curve max diff | wall s ref / new | geometries ref / new | within |",
@@ -149,7 +153,7 @@ def markdown(result):
             f"({pct(pk['relative'])}) | {e5['reference'] * 1e3:.4f}e-3 / {e5['candidate'] * 1e3:.4f}e-3 "
             f"({pct(e5['relative'])}) | {di['reference'] * 1e-3:.2f} / {di['candidate'] * 1e-3:.2f} "
             f"({pct(di['relative'])}) | {s['damage_curve_max_difference']:.4f} | "
-            f"{s['wall_s']['reference']:.0f} / {s['wall_s']['candidate']:.0f} | {g['reference']} / {g['candidate']} | "
+            f"{s['wall_s']['reference']:.0f} / {s['wall_s']['candidate']:.0f} | {count(g['reference'])} / {count(g['candidate'])} | "
             f"{'yes' if s['within_tolerance'] else 'no'} |")
     lines += ["", "Per cell (relative differences of the candidate from the reference; damage: largest absolute "
               "difference of the curves):", "",
