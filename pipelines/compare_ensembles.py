@@ -75,7 +75,7 @@ def read_cell(d):
 
 
 def relative(candidate, reference):
-    return (candidate - reference) / abs(reference) if reference not in (0.0,) and math.isfinite(reference) else math.nan
+    return (candidate - reference) / abs(reference) if reference != 0.0 and math.isfinite(reference) else math.nan
 
 
 def compare(reference_root, candidate_root, tolerance):
