@@ -82,9 +82,25 @@ class DistributedShot final : public ShotStepper {
   }
 
   std::size_t fragment_particles() override {
-    double count = static_cast<double>(run_.owned_fragments());  // exact in a double
+    double count = static_cast<double>(run_.owned_fragments().size());  // exact in a double
     MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
     return static_cast<std::size_t>(count);
+  }
+
+  std::vector<std::uint8_t> fragment_flags() override {
+    const std::vector<std::uint32_t> mine = run_.owned_fragments();
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    const int count = static_cast<int>(mine.size());
+    std::vector<int> counts(static_cast<std::size_t>(size)), starts(static_cast<std::size_t>(size), 0);
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    for (int r = 1; r < size; ++r) starts[r] = starts[r - 1] + counts[r - 1];
+    std::vector<std::uint32_t> ids(rank_ == 0 ? static_cast<std::size_t>(starts.back() + counts.back()) : 0);
+    MPI_Gatherv(mine.data(), count, MPI_UINT32_T, ids.data(), counts.data(), starts.data(), MPI_UINT32_T, 0, MPI_COMM_WORLD);
+    if (rank_ != 0) return {};
+    std::vector<std::uint8_t> flags(whole_->particles().n, 0);
+    for (const std::uint32_t id : ids) flags[id] = 1;
+    return flags;
   }
 
   double rows_kept_fraction() override {

@@ -4,9 +4,7 @@
 // output it gathers the owned particles' records into a solver of the whole body (never stepped), from
 // which the one-process outputs are written unchanged.
 // Its checkpoints are those of one process: rank 0 writes the whole body's, any rank count resumes them.
-// Not yet (macro_run.cpp refuses them with the key to change): the full field set, the penalty contact,
-// the Midpoint configuration; and rank 0 holds the whole body's particles for the outputs (no parallel
-// HDF5 yet).
+// Not yet: rank 0 holds the whole body's particles for the outputs (no parallel HDF5).
 #include <memory>
 
 #include "case_config.hpp"

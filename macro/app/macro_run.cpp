@@ -194,17 +194,6 @@ bool reuse_finished_run(const fs::path& result, const RunInputs& inputs) {
   return true;
 }
 
-// What a run over several ranks cannot do yet (distributed_shot.hpp) is refused before it starts, with
-// the key or option to change.
-void refuse_beyond_distributed(const Config& cfg, const CaseSettings& settings, int ranks) {
-  const std::string on_ranks = fmt::format("not distributed yet: run on one rank, not {}", ranks);
-  if (settings.run.fields == FieldSet::Full) cfg.section("run").fail("fields", "the full field set is " + on_ranks);
-  if (settings.solver.strain_configuration == StrainConfiguration::Midpoint)
-    cfg.section("solver").fail("strain_configuration", "the midpoint configuration is " + on_ranks);
-  if (settings.projectile.contact.model == SphereContactModel::Penalty)
-    cfg.section("projectile").section("contact").fail("model", "the penalty contact is " + on_ranks);
-}
-
 // The case's solver in one process or its parts over the ranks, resumed from `resumed` when given. One
 // process takes `law` over (its states are the solver's); the ranks' parts keep reading it.
 std::unique_ptr<ShotStepper> make_shot(const CaseSettings& settings, const ParticleBody& body, MaterialSet& law,
@@ -271,7 +260,6 @@ void run_macro(const MacroRunArgs& args) {
     return;
   }
   if (args.reuse && reuse_finished_run(args.out / "result.json", inputs)) return;
-  if (ranks > 1) refuse_beyond_distributed(cfg, settings, ranks);
   std::optional<RunCheckpoint> resumed;
   if (args.restart) {
     resumed = read_checkpoint(checkpoint_file, inputs.restart_hash);
@@ -321,8 +309,9 @@ void run_macro(const MacroRunArgs& args) {
   else if (writer) fields.emplace(args.out, shot->solver().material(), full);
   if (fields) fields->write_provenance(provenance);
   const auto write_fields = [&] {
+    const std::vector<std::uint8_t> fragments = full ? shot->fragment_flags() : std::vector<std::uint8_t>{};
     const ExplicitSolver* whole = shot->whole();
-    if (fields) fields->write(shot->solver(), *whole);
+    if (fields) fields->write(shot->solver(), *whole, full ? &fragments : nullptr);
     return whole;
   };
   History history = resumed ? History(resumed->history_text, resumed->history_rows) : History();

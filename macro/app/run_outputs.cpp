@@ -33,7 +33,7 @@ ParticleFieldWriter FieldOutput::resumed_writer(const std::filesystem::path& dir
   }
 }
 
-void FieldOutput::write(const ExplicitSolver& run, const ExplicitSolver& solver) {
+void FieldOutput::write(const ExplicitSolver& run, const ExplicitSolver& solver, const std::vector<std::uint8_t>* fragments) {
   if (run.time() <= last_time_) return;
   const Particles& p = solver.particles();
   pressure_.resize(p.n);
@@ -66,7 +66,7 @@ void FieldOutput::write(const ExplicitSolver& run, const ExplicitSolver& solver)
     constexpr int kTensor6[6] = {0, 1, 2, 4, 5, 8};
     for (std::size_t i = 0; i < p.n; ++i) {
       for (int c = 0; c < 6; ++c) stress6_[6 * i + c] = p.stress[9 * i + kTensor6[c]];
-      fragment_[i] = solver.shapes().fragment(i) ? 1.0 : 0.0;
+      fragment_[i] = (fragments ? (*fragments)[i] != 0 : solver.shapes().fragment(i)) ? 1.0 : 0.0;
       id_[i] = static_cast<double>(i);  // the row: the same particle in every step
     }
     fields.push_back({"stress", "Pa", 6, stress6_.data()});

@@ -48,9 +48,10 @@ class FieldOutput {
   FieldOutputState state() const { return {writer_.steps(), sphere_writer_.steps(), last_time_}; }
   // Appends the solver's current state (skipped when a state of the same time was written last).
   void write(const ExplicitSolver& solver) { write(solver, solver); }
-  // The same with the particles from `whole` (a distributed run's, ShotStepper::whole) and the time and
-  // sphere from `run`.
-  void write(const ExplicitSolver& run, const ExplicitSolver& whole);
+  // The same with the particles from `whole` (a distributed run's, ShotStepper::whole), the time and
+  // sphere from `run`, and (the full set) the fragment flags from `fragments` (ShotStepper::
+  // fragment_flags; nullptr: whole's own rows).
+  void write(const ExplicitSolver& run, const ExplicitSolver& whole, const std::vector<std::uint8_t>* fragments = nullptr);
   void write_provenance(const Provenance& provenance) {
     writer_.write_provenance(provenance);
     sphere_writer_.write_provenance(provenance);

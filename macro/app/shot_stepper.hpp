@@ -5,6 +5,8 @@
 // the outputs, from whole() on the rank that writes. The calls marked collective are made by every rank
 // in the same order.
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "solver/explicit_solver.hpp"
 
@@ -31,6 +33,9 @@ class ShotStepper {
   // in the body's order (collective).
   virtual std::size_t fragment_particles() = 0;
   virtual double target_mass_kg() = 0;
+  // Whether each particle moves as a rigid fragment now, in the body's order (collective): on the rank
+  // that writes; empty on the others.
+  virtual std::vector<std::uint8_t> fragment_flags() = 0;
   // Lazy RK rows: the fraction of the rows built over the run that were kept (0 without; over the
   // ranks, their ghosts' rows included). Collective.
   virtual double rows_kept_fraction() = 0;
@@ -53,6 +58,11 @@ class OneProcessShot final : public ShotStepper {
   const ExplicitSolver* whole() override { return &solver_; }
   FailureReport failure() override { return solver_.failure(); }
   std::size_t fragment_particles() override { return solver_.shapes().fragments(); }
+  std::vector<std::uint8_t> fragment_flags() override {
+    std::vector<std::uint8_t> flags(solver_.particles().n);
+    for (std::size_t i = 0; i < flags.size(); ++i) flags[i] = solver_.shapes().fragment(i) ? 1 : 0;
+    return flags;
+  }
   double target_mass_kg() override {
     double mass = 0.0;
     for (const double m : solver_.particles().mass) mass += m;

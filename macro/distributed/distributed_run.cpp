@@ -230,8 +230,9 @@ void DistributedRun::build_local(bool from_records) {
     rows_built_ += solver_->shapes().rows_built;
     rows_kept_ += solver_->shapes().rows_kept;
     if (solver_->shapes().has_rows(solver_->particles().n)) {  // (else those of the solver before it)
-      fragments_at_build_ = 0;
-      for (std::size_t i = 0; i < old_owned.size(); ++i) fragments_at_build_ += old_owned[i] && solver_->shapes().fragment(i) ? 1 : 0;
+      fragments_at_build_.clear();
+      for (std::size_t i = 0; i < old_owned.size(); ++i)
+        if (old_owned[i] && solver_->shapes().fragment(i)) fragments_at_build_.push_back(old_ids[i]);
     }
     solver_.reset();
   }
@@ -320,12 +321,13 @@ std::int32_t DistributedRun::local_index(std::uint32_t id) const {
   return id < local_of_id_.size() ? local_of_id_[id] : -1;
 }
 
-std::size_t DistributedRun::owned_fragments() const {
+std::vector<std::uint32_t> DistributedRun::owned_fragments() const {
   const ShapeCache& shapes = solver_->shapes();
   if (!shapes.has_rows(solver_->particles().n)) return fragments_at_build_;  // none built since the build
-  std::size_t count = 0;
-  for (const std::size_t i : owned_at_) count += shapes.fragment(i) ? 1 : 0;
-  return count;
+  std::vector<std::uint32_t> ids;
+  for (const std::size_t i : owned_at_)
+    if (shapes.fragment(i)) ids.push_back(local_ids_[i]);
+  return ids;
 }
 
 // Every row of the rank as its owner holds it: the owned rows stay where they are (kept, not copied

@@ -67,9 +67,9 @@ class DistributedRun {
   // Lazy rows built and kept on this rank over the run (ShapeCache::rows_built, rows_kept of its solvers).
   std::size_t rows_built() const { return rows_built_ + solver_->shapes().rows_built; }
   std::size_t rows_kept() const { return rows_kept_ + solver_->shapes().rows_kept; }
-  // The rank's own particles that move as rigid fragments now (ShapeCache::fragment; after a halo build
-  // whose solver has built no rows yet, those of the solver it replaced).
-  std::size_t owned_fragments() const;
+  // The ids of the rank's own particles that move as rigid fragments now, ascending (ShapeCache::fragment;
+  // after a halo build whose solver has built no rows yet, those of the solver it replaced).
+  std::vector<std::uint32_t> owned_fragments() const;
   double skin() const { return skin_m_; }
 
  private:
@@ -101,7 +101,7 @@ class DistributedRun {
   double kept_row_reach_m_ = 0.0;              // the halo's room for kept lazy rows
   std::size_t halo_builds_ = 0;
   std::size_t rows_built_ = 0, rows_kept_ = 0;  // those of the solvers replaced so far
-  std::size_t fragments_at_build_ = 0;           // owned_fragments() of the solver last replaced
+  std::vector<std::uint32_t> fragments_at_build_;  // owned_fragments() of the solver last replaced
   double halo_build_s_ = 0.0;
   std::size_t row_exchanges_ = 0;
   double row_exchange_s_ = 0.0;

@@ -138,12 +138,18 @@ void ExplicitSolver::set_rank_share(RankShare share) {
     throw std::invalid_argument("ExplicitSolver::set_rank_share: the ranks' min, sum and gather are required");
   if (!std::is_sorted(share.ids.begin(), share.ids.end()))
     throw std::invalid_argument("ExplicitSolver::set_rank_share: the particles must be in ascending global ids");
-  if (st_.sphere && st_.sphere->contact.model == SphereContactModel::Penalty)
-    throw std::invalid_argument("ExplicitSolver::set_rank_share: the penalty contact is not distributed yet");
-  if (options_.strain_configuration == StrainConfiguration::Midpoint)
-    throw std::invalid_argument("ExplicitSolver::set_rank_share: the midpoint strain configuration is not distributed yet");
   share_ = std::move(share);
   shapes_ = empty_shape_cache();
+  // The penalty contact's stiffness is the reference state's (SphereContact::initialize). One process
+  // takes it from initialize(); a rank's solver made again from records (continue_from) takes it from
+  // its states as made, before the records replace them.
+  reference_wave_speed_.resize(p_.n);
+  std::visit(
+      [&](const auto& block) {
+        for (std::size_t i = 0; i < p_.n; ++i)
+          reference_wave_speed_[i] = block.law.wave_speed(block.state[i], p_.volume0[i] / p_.volume[i]);
+      },
+      material_);
 }
 
 std::size_t ExplicitSolver::row_record_length(std::size_t i) const {
@@ -196,15 +202,13 @@ void ExplicitSolver::continue_from(const RunState& run) {
     throw std::invalid_argument("ExplicitSolver::continue_from: the solvers disagree on the sphere");
   take_run_state(run.state, run.counters);
   domain_ = run.domain;
-  if (st_.sphere) sphere_contact_.initialize(*st_.sphere, p_, &*share_);
+  if (st_.sphere) sphere_contact_.initialize(*st_.sphere, p_, reference_wave_speed_.data(), &*share_);
   drop_shape_cache();
   save_state();
   initialized_ = true;
 }
 
 void ExplicitSolver::set_sphere(const RigidSphere& sphere) {
-  if (share_ && sphere.contact.model == SphereContactModel::Penalty)
-    throw std::invalid_argument("ExplicitSolver::set_sphere: the penalty contact is not distributed yet");
   if (initialized_) throw std::logic_error("ExplicitSolver::set_sphere: call before initialize()");
   sphere.validate();
   st_.sphere = sphere;
@@ -244,7 +248,7 @@ void ExplicitSolver::initialize() {
         }
       },
       material_);
-  if (st_.sphere) sphere_contact_.initialize(*st_.sphere, p_, share_ ? &*share_ : nullptr);
+  if (st_.sphere) sphere_contact_.initialize(*st_.sphere, p_, p_.wave_speed.data(), share_ ? &*share_ : nullptr);
   // The first contact forces are predicted over the first step: bound it by the travel before they are
   // computed, then by the contact they give.
   st_.dt_s = stable_step({material_step, travel_limit()});
@@ -329,7 +333,7 @@ void ExplicitSolver::compute_accelerations(double dt) {
     // shapes at x, rebuilt below.
     rebuild_shapes(x_strain, p_.vel_grad.data(), nsni ? p_.vel_grad_grad.data() : nullptr);
     shapes_at_x_ = false;
-    sums = std::visit([&](auto& block) { return update_stresses(block, p_, dt, options_.viscosity); }, material_);  // one process only (set_rank_share)
+    sums = std::visit([&](auto& block) { return update_stresses(block, p_, dt, options_.viscosity, owned_flags()); }, material_);
   } else {
     const bool average = config == StrainConfiguration::EndpointAverage;
     // EndpointAverage: the x_n gradients of the rows before prepare replaces them (all of them here,

@@ -282,6 +282,7 @@ class ExplicitSolver {
   std::int64_t inverted_ = -1;
   bool initialized_ = false;
   std::optional<RankShare> share_;
+  std::vector<double> reference_wave_speed_;  // a rank's solver: its particles' at the reference state (set_rank_share)
   FailureReport failure_;
   // The last good state, saved at the start of every step (same-size copies: no allocation). Of the
   // particles only the fields a step changes and reads back are kept (kEvolvingFields in

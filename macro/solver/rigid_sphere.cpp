@@ -53,14 +53,15 @@ void RigidSphere::validate() const {
       throw std::invalid_argument("RigidSphere: position and velocity must be finite");
 }
 
-void SphereContact::initialize(const RigidSphere& sphere, const Particles& p, const RankShare* share) {
+void SphereContact::initialize(const RigidSphere& sphere, const Particles& p, const double* wave_speed,
+                               const RankShare* share) {
   k_.resize(p.n);
   min_travel_distance_ = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.n; ++i) {
     if (share && !share->owned[i]) continue;
     // rho0 c0^2 with rho0 = m / V0: the reference stiffness, whatever the current state.
     const double rho0 = p.mass[i] / p.volume0[i];
-    k_[i] = sphere.contact.penalty_scale * rho0 * p.wave_speed[i] * p.wave_speed[i] * p.spacing[i];
+    k_[i] = sphere.contact.penalty_scale * rho0 * wave_speed[i] * wave_speed[i] * p.spacing[i];
     // The travel limit's distance: the contact radius; h_I / 4 for a zero radius (the particles' centres
     // on the sphere's surface), which would stop the clock.
     min_travel_distance_ = std::min(min_travel_distance_, contact_reach(sphere.contact, p.spacing[i]));
@@ -85,6 +86,7 @@ void SphereContact::initialize(const RigidSphere& sphere, const Particles& p, co
   velocity_.reserve(3 * room);
   local_.reserve(room);
   active_.reserve(room);
+  if (share) mine_.reserve(9 * room);  // the records a rank sends (the kinematic contact's 9 doubles are the wider)
 }
 
 double SphereContact::travel_limit(const RigidSphere& sphere) const {
@@ -95,7 +97,7 @@ double SphereContact::travel_limit(const RigidSphere& sphere) const {
 SphereContactSums SphereContact::compute(const RigidSphere& sphere, const Particles& p, double dt, double dt_next,
                                          double* f_contact, const RankShare* share) {
   SphereContactSums sums = sphere.contact.model == SphereContactModel::Penalty
-                               ? penalty(sphere, p, dt, f_contact)
+                               ? penalty(sphere, p, dt, f_contact, share)
                                : kinematic(sphere, p, dt, dt_next, f_contact, share);
   sums.critical_step = std::min(sums.critical_step, travel_limit(sphere));
   return sums;
@@ -116,17 +118,20 @@ void SphereContact::add_friction(const RigidSphere& s, const double* v, double m
   }
 }
 
-SphereContactSums SphereContact::penalty(const RigidSphere& s, const Particles& p, double dt, double* f_contact) const {
+SphereContactSums SphereContact::penalty(const RigidSphere& s, const Particles& p, double dt, double* f_contact,
+                                         const RankShare* share) {
   const std::int64_t n = static_cast<std::int64_t>(p.n);
   double fx = 0.0, fy = 0.0, fz = 0.0, energy = 0.0, ksum = 0.0;
   const bool friction = s.contact.friction_coefficient > 0.0;
   double dt_min = std::numeric_limits<double>::infinity();
   std::int64_t count = 0;
   const double reach_factor = s.contact.contact_radius_factor;
-#pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, energy, ksum, count) reduction(min : dt_min) if (n >= kParallelMinParticles)
+  if (share) mine_.clear();
+#pragma omp parallel for schedule(static) reduction(+ : fx, fy, fz, energy, ksum, count) reduction(min : dt_min) if (n >= kParallelMinParticles && !share)
   for (std::int64_t i = 0; i < n; ++i) {
     double* f = f_contact + 3 * i;
     f[0] = f[1] = f[2] = 0.0;
+    if (share && !share->owned[static_cast<std::size_t>(i)]) continue;  // a ghost: its owner's
     const double* x = p.x.data() + 3 * i;
     const double r[3] = {x[0] - s.x[0], x[1] - s.x[1], x[2] - s.x[2]};
     const double reach = s.radius_m + reach_factor * p.spacing[i];
@@ -140,6 +145,9 @@ SphereContactSums SphereContact::penalty(const RigidSphere& s, const Particles& 
     const double normal[3] = {r[0] / d, r[1] / d, r[2] / d};
     for (int c = 0; c < 3; ++c) f[c] = magnitude * normal[c];
     if (friction) add_friction(s, p.v.data() + 3 * i, p.mass[i], normal, magnitude, dt, f);
+    if (share)  // summed below over every rank's pairs in the order of their ids
+      mine_.insert(mine_.end(), {static_cast<double>(share->ids[static_cast<std::size_t>(i)]), f[0], f[1], f[2],
+                                 0.5 * k_[i] * delta * delta, k_[i]});
     fx -= f[0];
     fy -= f[1];
     fz -= f[2];
@@ -147,6 +155,27 @@ SphereContactSums SphereContact::penalty(const RigidSphere& s, const Particles& 
     ksum += k_[i];
     ++count;
     dt_min = std::min(dt_min, 2.0 * std::sqrt(p.mass[i] / k_[i]));
+  }
+  if (share) {
+    // The sums one process makes, particle after particle: the pairs of every rank in the order of their
+    // ids (ids below 2^53 are exact in a double), added from zero as the loop above adds them.
+    constexpr std::size_t kWidth = 6;
+    share->gather(mine_, all_);
+    const std::size_t m = all_.size() / kWidth;
+    order_.resize(m);
+    for (std::size_t c = 0; c < m; ++c) order_[c] = c;
+    std::sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return all_[kWidth * a] < all_[kWidth * b]; });
+    fx = fy = fz = energy = ksum = 0.0;
+    for (const std::size_t c : order_) {
+      const double* r = all_.data() + kWidth * c;
+      fx -= r[1];
+      fy -= r[2];
+      fz -= r[3];
+      energy += r[4];
+      ksum += r[5];
+    }
+    count = static_cast<std::int64_t>(m);
+    dt_min = share->min(dt_min);
   }
   SphereContactSums sums;
   sums.force_on_sphere = {fx, fy, fz};

@@ -124,12 +124,15 @@ struct SphereContactSums {
 
 class SphereContact {
  public:
-  // Fixes the penalty stiffness from the reference density and the current (initial) wave speeds, and
-  // the smallest contact radius; sizes the scratch (no allocation in the steps after).
-  // share (a distributed run's rank, rank_share.hpp): the owned particles count, and the kinematic
-  // contact's active set is solved over every rank's candidates, gathered in the order of their ids, so
-  // that each rank finds the one-process forces and the same force on the sphere.
-  void initialize(const RigidSphere& sphere, const Particles& p, const RankShare* share = nullptr);
+  // Fixes the penalty stiffness from the reference density and the reference state's wave speeds
+  // (wave_speed, one a particle), and the smallest contact radius; sizes the scratch (no allocation in
+  // the steps after).
+  // share (a distributed run's rank, rank_share.hpp): the owned particles count; the kinematic
+  // contact's active set is solved over every rank's candidates, and the penalty's sums are made over
+  // every rank's pairs, gathered in the order of their ids, so that each rank finds the one-process
+  // forces and the same force on the sphere.
+  void initialize(const RigidSphere& sphere, const Particles& p, const double* wave_speed,
+                  const RankShare* share = nullptr);
   // The contact force of every particle into f_contact (3n; zero where there is none), with the
   // particles' internal and external forces already in p.f_int and p.f_ext (the kinematic model
   // predicts the motion they cause). The forces act over the second half kick of the step dt that
@@ -141,7 +144,8 @@ class SphereContact {
   double travel_limit(const RigidSphere& sphere) const;
 
  private:
-  SphereContactSums penalty(const RigidSphere& sphere, const Particles& p, double dt, double* f_contact) const;
+  SphereContactSums penalty(const RigidSphere& sphere, const Particles& p, double dt, double* f_contact,
+                            const RankShare* share);
   SphereContactSums kinematic(const RigidSphere& sphere, const Particles& p, double dt, double dt_next,
                               double* f_contact, const RankShare* share);
   // The candidates of every rank in the order of their global ids (a distributed run).
@@ -159,7 +163,7 @@ class SphereContact {
   std::vector<double> mass_, velocity_;       // per candidate (velocity: 3 each)
   std::vector<unsigned char> active_;
   // Distributed: per candidate, the particle's index here when it is owned here (-1 otherwise); and
-  // the records the ranks exchange.
+  // the records the ranks exchange (the kinematic contact's candidates, the penalty's pairs).
   std::vector<std::int64_t> local_;
   std::vector<double> mine_, all_;
   std::vector<std::size_t> order_;

@@ -129,15 +129,16 @@ inline void add_sums(const StressUpdateSums& s, double& work, double& visc, doub
 }
 
 template <class Block>
-StressUpdateSums update_stresses(Block& block, Particles& p, double dt, const BulkViscosity& viscosity) {
+StressUpdateSums update_stresses(Block& block, Particles& p, double dt, const BulkViscosity& viscosity,
+                                 const std::uint8_t* counted = nullptr) {
   const std::int64_t n = static_cast<std::int64_t>(p.n);
   double work = 0.0, visc = 0.0, stab = 0.0, dt_min = std::numeric_limits<double>::infinity();
   std::int64_t inverted = -1;
 #pragma omp parallel reduction(+ : work, visc, stab) reduction(min : dt_min) reduction(max : inverted) if (n >= kParallelMinParticles)
   {
-    StressUpdateSums sums;
+    StressUpdateSums sums, ghosts;  // ghosts: a ghost's shares, not counted
 #pragma omp for schedule(static, kRowChunk)
-    for (std::int64_t i = 0; i < n; ++i) update_stress(block, p, i, dt, viscosity, sums);
+    for (std::int64_t i = 0; i < n; ++i) update_stress(block, p, i, dt, viscosity, !counted || counted[i] ? sums : ghosts);
     add_sums(sums, work, visc, stab, dt_min, inverted);
   }
   return {work, visc, stab, dt_min, inverted};

@@ -147,9 +147,9 @@ add_test(NAME regression.pipelines_sensitivity
                  --build ${CMAKE_BINARY_DIR} --out ${UHPC_REGRESSION_OUT}/pipelines_sensitivity)
 set_tests_properties(regression.pipelines_sensitivity PROPERTIES LABELS regression TIMEOUT 300)
 # uhpc-macro under mpirun (issue 49): a small disc's shot at 2-4 ranks against the same shot in one
-# process, with lazy rows and with every row rebuilt, and stopped and restarted at another rank count:
-# the residual velocity, the sphere and every field bit for bit, the books to 1e-10; a case the ranks
-# cannot run yet refused with exit 2 (about 15 s each). Open MPI's settings as in macro_tests.cmake; the
+# process, with lazy rows and with every row rebuilt, stopped and restarted at another rank count, with
+# the full field set and the penalty contact, and with the midpoint strain configuration: the residual
+# velocity, the sphere and every field bit for bit, the books to 1e-10 (about 20 s each). Open MPI's settings as in macro_tests.cmake; the
 # distribution's python3 for its h5py.
 if(UHPC_MPI)
   foreach(np 2 3 4)

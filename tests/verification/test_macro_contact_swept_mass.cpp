@@ -55,7 +55,7 @@ int touched_in_slab(double h, ContactSurface surface, double ox, double oy, doub
   s.x = {ox, oy, -kRadius - h};
   s.v = {0.0, 0.0, kSpeed};
   SphereContact contact;
-  contact.initialize(s, p);
+  contact.initialize(s, p, p.wave_speed.data());
   std::vector<double> f(3 * p.n, 0.0);
   std::vector<unsigned char> touched(p.n, 0);
   const double dt = 0.1 * h / kSpeed;  // a tenth of a spacing a step, inside the travel limit (h / 2)
@@ -160,7 +160,7 @@ TEST(MacroContactSweptMass, TheFlightLineIsStruckAtRPlusRAndTheSectionsEdgeOnlyB
       s.x = {-start * e[0], -start * e[1], -start * e[2]};
       s.v = {kSpeed * e[0], kSpeed * e[1], kSpeed * e[2]};
       SphereContact contact;
-      contact.initialize(s, p);
+      contact.initialize(s, p, p.wave_speed.data());
       double f[3];
       const double dt = 0.1 * h / kSpeed;
       bool struck = false;

@@ -34,8 +34,8 @@ using namespace uhpc::macro::distributed;
 
 constexpr int kSteps = 160;
 
-// The coarse case's law, solver and frame on a disc small enough for ctest, rows rebuilt every step
-// (lazy rows are not distributed yet).
+// The coarse case's law, solver and frame on a disc small enough for ctest, with every row rebuilt each
+// step or with lazy rows (SmallDisc's reuse).
 enum class Strike { Core, Sphere };
 
 struct SmallDisc {
