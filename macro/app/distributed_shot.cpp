@@ -32,23 +32,49 @@ std::vector<std::uint32_t> all_ids(std::size_t n) {
 class DistributedShot final : public ShotStepper {
  public:
   DistributedShot(const CaseSettings& settings, const ParticleBody& body, const MaterialSet& law)
-      : run_(MPI_COMM_WORLD, body.size(),
-             [&settings, &body, &law](const std::vector<std::uint32_t>& ids) {
-               return make_part_solver(settings, body, law, ids);
-             }) {
+      : settings_(settings),
+        body_(body),
+        law_(law),
+        run_(MPI_COMM_WORLD, body.size(), [&settings, &body, &law](const std::vector<std::uint32_t>& ids) {
+          return make_part_solver(settings, body, law, ids);
+        }) {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    if (rank_ == 0) whole_.emplace(make_part_solver(settings, body, law, all_ids(body.size())));
   }
 
   bool step() override { return run_.step(); }
   const ExplicitSolver& solver() const override { return run_.solver(); }
   bool writes() const override { return rank_ == 0; }
 
-  const ExplicitSolver* whole() override {
-    const distributed::ParticleSet all = distributed::gather(run_.owned_records(), MPI_COMM_WORLD, 0);
+  // Each rank fills its own particles' records; rank 0 gathers them in the order of their ids.
+  const std::vector<double>& field_records(const FieldRecords& records) override {
+    distributed::ParticleSet mine(static_cast<int>(records.width()));
+    std::vector<double> record(records.width());
+    each_owned([&](std::size_t i, std::uint32_t id) {
+      records.fill(run_.solver(), i, record.data());
+      mine.push_back(id, record.data());
+    });
+    records_ = distributed::gather(mine, MPI_COMM_WORLD, 0).values;
+    return records_;
+  }
+
+  const Particles* body_particles() override {
+    distributed::ParticleSet mine(6);  // x, v
+    const Particles& p = run_.solver().particles();
+    each_owned([&](std::size_t i, std::uint32_t id) {
+      const double xv[6] = {p.x[3 * i], p.x[3 * i + 1], p.x[3 * i + 2], p.v[3 * i], p.v[3 * i + 1], p.v[3 * i + 2]};
+      mine.push_back(id, xv);
+    });
+    const distributed::ParticleSet all = distributed::gather(mine, MPI_COMM_WORLD, 0);
     if (rank_ != 0) return nullptr;
-    for (std::size_t k = 0; k < all.size(); ++k) whole_->read_particle(all.id[k], all.at(k));
-    return &*whole_;
+    const std::size_t n = body_.size();
+    body_now_.n = n;
+    body_now_.x.resize(3 * n);
+    body_now_.v.resize(3 * n);
+    for (std::size_t k = 0; k < n; ++k)
+      for (int d = 0; d < 3; ++d) body_now_.x[3 * k + d] = all.at(k)[d], body_now_.v[3 * k + d] = all.at(k)[3 + d];
+    body_now_.mass = masses();
+    body_now_.spacing = body_.spacing;
+    return &body_now_;
   }
 
   // Every rank has the agreed kind, step and time. The particle is the one one process would name: the
@@ -98,7 +124,7 @@ class DistributedShot final : public ShotStepper {
     std::vector<std::uint32_t> ids(rank_ == 0 ? static_cast<std::size_t>(starts.back() + counts.back()) : 0);
     MPI_Gatherv(mine.data(), count, MPI_UINT32_T, ids.data(), counts.data(), starts.data(), MPI_UINT32_T, 0, MPI_COMM_WORLD);
     if (rank_ != 0) return {};
-    std::vector<std::uint8_t> flags(whole_->particles().n, 0);
+    std::vector<std::uint8_t> flags(body_.size(), 0);
     for (const std::uint32_t id : ids) flags[id] = 1;
     return flags;
   }
@@ -109,11 +135,15 @@ class DistributedShot final : public ShotStepper {
     return kept_fraction(rows[0], rows[1]);
   }
 
+  // Rank 0 gathers every particle's record into a solver of the whole body, made for the checkpoint
+  // and freed after it.
   SolverCheckpoint checkpoint() override {
-    const ExplicitSolver* whole = this->whole();
-    if (!whole) return {};
-    whole_->adopt_run_state(run_.solver());
-    return whole_->checkpoint();
+    const distributed::ParticleSet all = distributed::gather(run_.owned_records(), MPI_COMM_WORLD, 0);
+    if (rank_ != 0) return {};
+    ExplicitSolver whole = make_part_solver(settings_, body_, law_, all_ids(body_.size()));
+    for (std::size_t k = 0; k < all.size(); ++k) whole.read_particle(all.id[k], all.at(k));
+    whole.adopt_run_state(run_.solver());
+    return whole.checkpoint();
   }
   void resume(const SolverCheckpoint& checkpoint) override { run_.resume(checkpoint); }
   void drop_rows() override { run_.drop_rows(); }
@@ -125,16 +155,34 @@ class DistributedShot final : public ShotStepper {
 
   double target_mass_kg() override {  // summed as one process sums it, so that the outcome is decided alike
     double mass = 0.0;
-    if (rank_ == 0)
-      for (const double m : whole_->particles().mass) mass += m;
-    MPI_Bcast(&mass, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    for (const double m : masses()) mass += m;
     return mass;
   }
 
  private:
+  // f(i, id) for each particle the rank owns: its place in the rank's solver and its global id.
+  template <class F>
+  void each_owned(F&& f) const {
+    const std::vector<std::uint8_t>& owned = run_.owned();
+    const std::vector<std::uint32_t>& ids = run_.local_ids();
+    for (std::size_t i = 0; i < owned.size(); ++i)
+      if (owned[i]) f(i, ids[i]);
+  }
+  // The body's masses as one process has them (Particles::from_body), from the body every rank holds.
+  std::vector<double> masses() const {
+    const double rho = reference_density(law_);
+    std::vector<double> m(body_.size());
+    for (std::size_t i = 0; i < m.size(); ++i) m[i] = rho * body_.volume[i];
+    return m;
+  }
+
+  const CaseSettings& settings_;
+  const ParticleBody& body_;
+  const MaterialSet& law_;
   DistributedRun run_;
   int rank_ = 0;
-  std::optional<ExplicitSolver> whole_;  // rank 0: the whole body, for the outputs
+  std::vector<double> records_;  // rank 0: the body's field records, gathered
+  Particles body_now_;           // rank 0: the body's positions, velocities, masses and spacings
 };
 
 }  // namespace

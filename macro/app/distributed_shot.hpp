@@ -1,10 +1,11 @@
 #pragma once
 // uhpc-macro over the ranks of MPI_COMM_WORLD (issue 49): the case's rank solvers (make_part_solver)
 // stepped by a DistributedRun behind the run loop's ShotStepper. Rank 0 writes every file: at each
-// output it gathers the owned particles' records into a solver of the whole body (never stepped), from
-// which the one-process outputs are written unchanged.
-// Its checkpoints are those of one process: rank 0 writes the whole body's, any rank count resumes them.
-// Not yet: rank 0 holds the whole body's particles for the outputs (no parallel HDF5).
+// output the ranks fill their own particles' field records and rank 0 gathers them in the order of
+// their ids, so the one-process files are written unchanged.
+// Its checkpoints are those of one process: rank 0 gathers the particles' state records into a solver
+// of the whole body made for the checkpoint, and any rank count resumes them. Not yet: parallel HDF5
+// (rank 0 holds the body's fields at an output, its state at a checkpoint).
 #include <memory>
 
 #include "case_config.hpp"

@@ -50,9 +50,8 @@ nlohmann::json beyond_domain_json(const Particles& p, const Region& domain) {
   return {{"particles", count}, {"mass_kg", mass}, {"kinetic_J", kinetic}};
 }
 
-// s: the run's state (time, sphere, books); whole: the whole body's particles (the same solver in one
-// process, ShotStepper::whole in a distributed run).
-nlohmann::json result_json(const ExplicitSolver& s, const ExplicitSolver& whole, std::size_t fragment_particles,
+// s: the run's state (time, sphere, books); body: the whole body's particles (ShotStepper::body_particles).
+nlohmann::json result_json(const ExplicitSolver& s, const Particles& body, std::size_t fragment_particles,
                            double rows_kept_fraction, const ImpactTracker& impact, const BalanceTracker& balance, const std::string& model,
                            double wall_s, const Provenance& provenance, std::size_t field_steps) {
   const double vi = impact.impact_velocity_m_s, vf = s.sphere().v[2];
@@ -72,20 +71,20 @@ nlohmann::json result_json(const ExplicitSolver& s, const ExplicitSolver& whole,
       {"final_sphere_position_m", s.sphere().x},
       {"end_time_s", s.time()},
       {"material_model", model},
-      {"particle_count", whole.particles().n},
+      {"particle_count", body.n},
       {"steps", s.steps()},
       {"step_repeats", s.step_repeats()},
       {"field_outputs", field_steps},
       {"wall_time_s", wall_s},
       {"peak_memory_MB", peak_memory_MiB()},  // (MiB; the key predates the unit)
       {"particle_steps_per_s",
-       wall_s > 0 ? static_cast<double>(whole.particles().n) * static_cast<double>(s.steps()) / wall_s : 0.0},
+       wall_s > 0 ? static_cast<double>(body.n) * static_cast<double>(s.steps()) / wall_s : 0.0},
       // Lazy RK rows (solver.shape_reuse_tolerance): the fraction of rows kept over the run (0 without).
       {"shape_rows_kept_fraction", rows_kept_fraction},
       // Particles moving as rigid fragments at the end (ShapeCache::fragment, solver.fragment_rcond).
       {"fragment_particles", fragment_particles},
       // Ejecta in flight beyond the domain box at the end (SolverOptions::domain).
-      {"beyond_domain", beyond_domain_json(whole.particles(), s.domain())},
+      {"beyond_domain", beyond_domain_json(body, s.domain())},
       {"energy",
        {{"initial_kinetic_J", s.ledger().kinetic_initial},
         {"final_kinetic_J", s.ledger().kinetic},
@@ -308,11 +307,11 @@ void run_macro(const MacroRunArgs& args) {
   if (writer && resumed) fields.emplace(args.out, shot->solver().material(), resumed->fields, full);
   else if (writer) fields.emplace(args.out, shot->solver().material(), full);
   if (fields) fields->write_provenance(provenance);
+  const FieldRecords field_records(shot->solver().material(), full.has_value());  // every rank fills its own
   const auto write_fields = [&] {
     const std::vector<std::uint8_t> fragments = full ? shot->fragment_flags() : std::vector<std::uint8_t>{};
-    const ExplicitSolver* whole = shot->whole();
-    if (fields) fields->write(shot->solver(), *whole, full ? &fragments : nullptr);
-    return whole;
+    const std::vector<double>& records = shot->field_records(field_records);
+    if (fields) fields->write(shot->solver(), records, fragments);
   };
   History history = resumed ? History(resumed->history_text, resumed->history_rows) : History();
   const auto save_history = [&] {
@@ -415,7 +414,8 @@ void run_macro(const MacroRunArgs& args) {
                  "m/s); run.end_time_s is too short to decide this shot",
                  solver.time() * 1e6, solver.sphere().v[2]);
   const double wall = elapsed();
-  const ExplicitSolver* whole = write_fields();
+  write_fields();
+  const Particles* body_now = shot->body_particles();
   const std::size_t fragments = shot->fragment_particles();
   const double rows_kept = shot->rows_kept_fraction();
   // An undecided run keeps its last state as a checkpoint, so that --restart with a later run.end_time_s
@@ -425,13 +425,13 @@ void run_macro(const MacroRunArgs& args) {
   if (!writer) return;
   save_history();
   nlohmann::json result =
-      result_json(solver, *whole, fragments, rows_kept, impact, balance, material.model, wall, provenance, fields->steps_written());
+      result_json(solver, *body_now, fragments, rows_kept, impact, balance, material.model, wall, provenance, fields->steps_written());
   result["ranks"] = ranks;
   result["inputs"] = inputs_summary(inputs);
   const Vec3 flight = flight_direction(settings.projectile);
   const ShotOnPanel shot_on_panel{settings.target.thickness_m(), settings.projectile.offset_m, flight[0] / flight[2],
                                   settings.projectile.radius_m, solver.sphere().v[2], impact.perforated()};
-  result["panel"] = panel_json(panel_damage(whole->particles(), body.position, shot_on_panel));
+  result["panel"] = panel_json(panel_damage(*body_now, body.position, shot_on_panel));
   for (RunWarning& w : warnings_after_run(solver.ledger())) {
     spdlog::warn("{}", w.message);
     warnings.push_back(std::move(w));

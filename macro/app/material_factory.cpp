@@ -89,15 +89,8 @@ std::vector<std::string> law_output_fields(const MaterialSet& set) {
   return std::visit([](const auto& b) { return std::decay_t<decltype(b.law)>::output_fields(); }, set);
 }
 
-void law_output_values(const MaterialSet& set, std::vector<double>& out) {
-  std::visit(
-      [&](const auto& b) {
-        const std::size_t k = std::decay_t<decltype(b.law)>::output_fields().size();
-        out.assign(b.state.size() * k, 0.0);
-        if (k == 0) return;
-        for (std::size_t i = 0; i < b.state.size(); ++i) b.law.output_values(b.state[i], out.data() + k * i);
-      },
-      set);
+void law_output_values_at(const MaterialSet& set, std::size_t i, double* out) {
+  std::visit([&](const auto& b) { b.law.output_values(b.state[i], out); }, set);
 }
 
 }  // namespace uhpc::macro

@@ -40,7 +40,7 @@ MaterialChoice make_material(const Config& block, std::size_t particles, const s
 
 // The names of the per-law output fields of `set` (Law::output_fields()).
 std::vector<std::string> law_output_fields(const MaterialSet& set);
-// Writes every particle's law fields into out (n x fields, row-major).
-void law_output_values(const MaterialSet& set, std::vector<double>& out);
+// Particle i's values of them (law_output_fields(set).size() doubles into out).
+void law_output_values_at(const MaterialSet& set, std::size_t i, double* out);
 
 }  // namespace uhpc::macro

@@ -12,13 +12,13 @@
 namespace uhpc::macro {
 
 FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, std::optional<FullFields> full)
-    : writer_(dir, "fields"), sphere_writer_(dir, "sphere"), law_fields_(law_output_fields(material)), full_(full) {}
+    : writer_(dir, "fields"), sphere_writer_(dir, "sphere"), records_(material, full.has_value()), full_(full) {}
 
 FieldOutput::FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, const FieldOutputState& resumed,
                          std::optional<FullFields> full)
     : writer_(resumed_writer(dir, "fields", resumed.particle_steps)),
       sphere_writer_(resumed_writer(dir, "sphere", resumed.sphere_steps)),
-      law_fields_(law_output_fields(material)),
+      records_(material, full.has_value()),
       full_(full),
       last_time_(resumed.last_time_s) {}
 
@@ -33,48 +33,62 @@ ParticleFieldWriter FieldOutput::resumed_writer(const std::filesystem::path& dir
   }
 }
 
-void FieldOutput::write(const ExplicitSolver& run, const ExplicitSolver& solver, const std::vector<std::uint8_t>* fragments) {
-  if (run.time() <= last_time_) return;
-  const Particles& p = solver.particles();
-  pressure_.resize(p.n);
-  equivalent_.resize(p.n);
-  for (std::size_t i = 0; i < p.n; ++i) {
-    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> s(p.stress.data() + 9 * i);
-    pressure_[i] = pressure_of(s);
-    equivalent_[i] = von_mises(s);
-  }
-  dissipated_.resize(p.n);
-  for (std::size_t i = 0; i < p.n; ++i) dissipated_[i] = solver.dissipated_density(i);
-  std::vector<ParticleField> fields = {{"velocity", "m/s", 3, p.v.data()},
-                                       {"pressure", "Pa", 1, pressure_.data()},
-                                       {"equivalent_stress", "Pa", 1, equivalent_.data()},
-                                       {"volume", "m^3", 1, p.volume.data()},
-                                       {"dissipated_J_m3", "J/m^3", 1, dissipated_.data()}};
-  // The law's fields come interleaved (n x k); each is written as its own scalar array.
-  law_output_values(solver.material(), law_values_);
-  const std::size_t k = law_fields_.size();
-  column_.resize(k * p.n);
-  for (std::size_t f = 0; f < k; ++f) {
-    for (std::size_t i = 0; i < p.n; ++i) column_[f * p.n + i] = law_values_[k * i + f];
-    fields.push_back({law_fields_[f], "1", 1, column_.data() + f * p.n});
-  }
-  if (full_) {
-    // The stress as XDMF's symmetric Tensor6 (xx, xy, xz, yy, yz, zz), from the stored 3 x 3 (row-major).
-    stress6_.resize(6 * p.n);
-    fragment_.resize(p.n);
-    id_.resize(p.n);
+FieldRecords::FieldRecords(const MaterialSet& material, bool full) : law_fields_(law_output_fields(material)), full_(full) {}
+
+void FieldRecords::fill(const ExplicitSolver& s, std::size_t i, double* r) const {
+  const Particles& p = s.particles();
+  for (int d = 0; d < 3; ++d) r[d] = p.x[3 * i + d], r[3 + d] = p.v[3 * i + d];
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> stress(p.stress.data() + 9 * i);
+  r[6] = pressure_of(stress);
+  r[7] = von_mises(stress);
+  r[8] = p.volume[i];
+  r[9] = s.dissipated_density(i);
+  law_output_values_at(s.material(), i, r + kStandard);
+  if (full_) {  // the stored 3 x 3 (row-major) as XDMF's symmetric Tensor6
     constexpr int kTensor6[6] = {0, 1, 2, 4, 5, 8};
-    for (std::size_t i = 0; i < p.n; ++i) {
-      for (int c = 0; c < 6; ++c) stress6_[6 * i + c] = p.stress[9 * i + kTensor6[c]];
-      fragment_[i] = (fragments ? (*fragments)[i] != 0 : solver.shapes().fragment(i)) ? 1.0 : 0.0;
+    double* t = r + kStandard + law_fields_.size();
+    for (int c = 0; c < 6; ++c) t[c] = p.stress[9 * i + kTensor6[c]];
+  }
+}
+
+void FieldOutput::write(const ExplicitSolver& run, const std::vector<double>& records,
+                        const std::vector<std::uint8_t>& fragments) {
+  if (run.time() <= last_time_) return;
+  const std::size_t width = records_.width(), n = records.size() / width;
+  // The records' columns, each field contiguous (components interleaved), in the records' order.
+  column_.resize(records.size());
+  std::vector<ParticleField> fields;
+  std::size_t start = 0, at = 0;  // where the next field's column starts, and its offset in a record
+  const auto add = [&](const std::string& name, const char* unit, int components) {
+    double* column = column_.data() + start;
+    for (std::size_t i = 0; i < n; ++i)
+      for (int c = 0; c < components; ++c) column[components * i + c] = records[width * i + at + c];
+    if (at > 0) fields.push_back({name, unit, components, column});  // (the position is the writer's own)
+    start += n * components;
+    at += components;
+    return column;
+  };
+  const double* x = add("position", "m", 3);
+  add("velocity", "m/s", 3);
+  add("pressure", "Pa", 1);
+  add("equivalent_stress", "Pa", 1);
+  add("volume", "m^3", 1);
+  add("dissipated_J_m3", "J/m^3", 1);
+  // The law's fields, each written as its own scalar array.
+  for (const std::string& name : records_.law_fields()) add(name, "1", 1);
+  if (full_) {
+    add("stress", "Pa", 6);
+    fragment_.resize(n);
+    id_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      fragment_[i] = fragments[i] ? 1.0 : 0.0;
       id_[i] = static_cast<double>(i);  // the row: the same particle in every step
     }
-    fields.push_back({"stress", "Pa", 6, stress6_.data()});
     fields.push_back({"fragment", "1", 1, fragment_.data()});
     fields.push_back({"particle_id", "1", 1, id_.data()});
     fields.push_back({"reference_position", "m", 3, full_->reference_position->data()});
   }
-  writer_.write_step(run.time(), p.n, 3, p.x.data(), fields);
+  writer_.write_step(run.time(), n, 3, x, fields);
   const RigidSphere& sphere = run.sphere();
   sphere_writer_.write_step(run.time(), 1, 3, sphere.x.data(),
                             {{"radius", "m", 1, &sphere.radius_m}, {"velocity", "m/s", 3, sphere.v.data()}});

@@ -36,6 +36,26 @@ struct FullFields {
   const std::vector<double>* reference_position = nullptr;
 };
 
+// One particle's values of the field output as one record, its position first: x (3), v (3), pressure,
+// von Mises stress, volume, the energy dissipated per reference volume, the law's fields (Law::
+// output_fields()), and with the full set the stress (Tensor6: xx, xy, xz, yy, yz, zz). FieldOutput
+// writes the body's records; a distributed run's ranks fill their own particles' and rank 0 gathers
+// them (ShotStepper::field_records), so no rank needs the whole body's state.
+class FieldRecords {
+ public:
+  FieldRecords(const MaterialSet& material, bool full);
+  std::size_t width() const { return kStandard + law_fields_.size() + (full_ ? 6 : 0); }
+  // Particle i of `s` into record (width() doubles).
+  void fill(const ExplicitSolver& s, std::size_t i, double* record) const;
+  const std::vector<std::string>& law_fields() const { return law_fields_; }
+  bool full() const { return full_; }
+  static constexpr std::size_t kStandard = 10;  // x, v, pressure, equivalent stress, volume, dissipated
+
+ private:
+  std::vector<std::string> law_fields_;
+  bool full_;
+};
+
 class FieldOutput {
  public:
   // Writes DIR/fields.{h5,xdmf} (the particles) and DIR/sphere.{h5,xdmf} (the projectile); with `full`,
@@ -46,12 +66,10 @@ class FieldOutput {
   FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, const FieldOutputState& resumed,
               std::optional<FullFields> full = {});
   FieldOutputState state() const { return {writer_.steps(), sphere_writer_.steps(), last_time_}; }
-  // Appends the solver's current state (skipped when a state of the same time was written last).
-  void write(const ExplicitSolver& solver) { write(solver, solver); }
-  // The same with the particles from `whole` (a distributed run's, ShotStepper::whole), the time and
-  // sphere from `run`, and (the full set) the fragment flags from `fragments` (ShotStepper::
-  // fragment_flags; nullptr: whole's own rows).
-  void write(const ExplicitSolver& run, const ExplicitSolver& whole, const std::vector<std::uint8_t>* fragments = nullptr);
+  // Appends a state (skipped when a state of the same time was written last): the time and sphere from
+  // `run`, the particles from `records` (the body's, in its order: FieldRecords), and with the full set
+  // their fragment flags (ShotStepper::fragment_flags).
+  void write(const ExplicitSolver& run, const std::vector<double>& records, const std::vector<std::uint8_t>& fragments);
   void write_provenance(const Provenance& provenance) {
     writer_.write_provenance(provenance);
     sphere_writer_.write_provenance(provenance);
@@ -65,9 +83,9 @@ class FieldOutput {
   // The projectile, one point per step with its radius and velocity (sphere.xdmf: in ParaView, a Glyph
   // of type Sphere scaled by "radius" with scale factor 2 draws it over fields.xdmf).
   ParticleFieldWriter sphere_writer_;
-  std::vector<std::string> law_fields_;
+  FieldRecords records_;
   std::optional<FullFields> full_;
-  std::vector<double> pressure_, equivalent_, dissipated_, law_values_, column_, stress6_, fragment_, id_;
+  std::vector<double> column_, fragment_, id_;
   double last_time_ = -1.0;
 };
 

@@ -2,12 +2,13 @@
 // What uhpc-macro's run loop (macro_run.cpp) steps: the case's solver in one process (OneProcessShot),
 // or the ranks' parts of it under mpirun or srun (distributed_shot.hpp). The run's time, step, sphere,
 // contact and books are the same on every rank and come from solver(); the particles' own fields, for
-// the outputs, from whole() on the rank that writes. The calls marked collective are made by every rank
-// in the same order.
+// the outputs, from field_records() and body_particles() on the rank that writes. The calls marked
+// collective are made by every rank in the same order.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "run_outputs.hpp"
 #include "solver/explicit_solver.hpp"
 
 namespace uhpc::macro {
@@ -24,9 +25,12 @@ class ShotStepper {
   virtual const ExplicitSolver& solver() const = 0;
   // Whether this rank writes the run's files (one rank does).
   virtual bool writes() const = 0;
-  // The whole body's particles as they are now, in the body's order (collective): on the rank that
-  // writes; nullptr on the others. Its time, sphere and books are not kept: take those from solver().
-  virtual const ExplicitSolver* whole() = 0;
+  // Every particle's field record as it is now (FieldRecords), in the body's order (collective): on the
+  // rank that writes; empty on the others.
+  virtual const std::vector<double>& field_records(const FieldRecords& records) = 0;
+  // The body's particles as they are now (collective), for the results: on the rank that writes, their
+  // positions, velocities, masses and spacings (other fields may be empty); nullptr on the others.
+  virtual const Particles* body_particles() = 0;
   // The last failed step, named as one process names it (collective).
   virtual FailureReport failure() = 0;
   // The particles moving as rigid fragments (ShapeCache::fragment) and the whole target's mass, summed
@@ -55,7 +59,13 @@ class OneProcessShot final : public ShotStepper {
   bool step() override { return solver_.step(); }
   const ExplicitSolver& solver() const override { return solver_; }
   bool writes() const override { return true; }
-  const ExplicitSolver* whole() override { return &solver_; }
+  const std::vector<double>& field_records(const FieldRecords& records) override {
+    const std::size_t n = solver_.particles().n, width = records.width();
+    records_.resize(n * width);
+    for (std::size_t i = 0; i < n; ++i) records.fill(solver_, i, records_.data() + width * i);
+    return records_;
+  }
+  const Particles* body_particles() override { return &solver_.particles(); }
   FailureReport failure() override { return solver_.failure(); }
   std::size_t fragment_particles() override { return solver_.shapes().fragments(); }
   std::vector<std::uint8_t> fragment_flags() override {
@@ -76,6 +86,7 @@ class OneProcessShot final : public ShotStepper {
 
  private:
   ExplicitSolver& solver_;
+  std::vector<double> records_;
 };
 
 }  // namespace uhpc::macro
