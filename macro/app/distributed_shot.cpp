@@ -23,17 +23,10 @@ double all_min(double value) {
   return value;
 }
 
-std::vector<std::uint32_t> all_ids(std::size_t n) {
-  std::vector<std::uint32_t> ids(n);
-  for (std::size_t i = 0; i < n; ++i) ids[i] = static_cast<std::uint32_t>(i);
-  return ids;
-}
-
 class DistributedShot final : public ShotStepper {
  public:
   DistributedShot(const CaseSettings& settings, const ParticleBody& body, const MaterialSet& law)
-      : settings_(settings),
-        body_(body),
+      : body_(body),
         law_(law),
         run_(MPI_COMM_WORLD, body.size(), [&settings, &body, &law](const std::vector<std::uint32_t>& ids) {
           return make_part_solver(settings, body, law, ids);
@@ -135,15 +128,11 @@ class DistributedShot final : public ShotStepper {
     return kept_fraction(rows[0], rows[1]);
   }
 
-  // Rank 0 gathers every particle's record into a solver of the whole body, made for the checkpoint
-  // and freed after it.
+  // Rank 0 gathers every particle's record and makes the whole body's checkpoint of them.
   SolverCheckpoint checkpoint() override {
     const distributed::ParticleSet all = distributed::gather(run_.owned_records(), MPI_COMM_WORLD, 0);
     if (rank_ != 0) return {};
-    ExplicitSolver whole = make_part_solver(settings_, body_, law_, all_ids(body_.size()));
-    for (std::size_t k = 0; k < all.size(); ++k) whole.read_particle(all.id[k], all.at(k));
-    whole.adopt_run_state(run_.solver());
-    return whole.checkpoint();
+    return run_.solver().body_checkpoint(all.size(), all.values.data(), static_cast<std::size_t>(all.width));
   }
   void resume(const SolverCheckpoint& checkpoint) override { run_.resume(checkpoint); }
   void drop_rows() override { run_.drop_rows(); }
@@ -176,7 +165,6 @@ class DistributedShot final : public ShotStepper {
     return m;
   }
 
-  const CaseSettings& settings_;
   const ParticleBody& body_;
   const MaterialSet& law_;
   DistributedRun run_;

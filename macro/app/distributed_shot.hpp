@@ -3,9 +3,9 @@
 // stepped by a DistributedRun behind the run loop's ShotStepper. Rank 0 writes every file: at each
 // output the ranks fill their own particles' field records and rank 0 gathers them in the order of
 // their ids, so the one-process files are written unchanged.
-// Its checkpoints are those of one process: rank 0 gathers the particles' state records into a solver
-// of the whole body made for the checkpoint, and any rank count resumes them. Not yet: parallel HDF5
-// (rank 0 holds the body's fields at an output, its state at a checkpoint).
+// Its checkpoints are those of one process: rank 0 gathers the particles' state records and makes the
+// whole body's checkpoint of them (ExplicitSolver::body_checkpoint); any rank count resumes them. Not
+// yet: parallel HDF5 (rank 0 holds the body's fields at an output, its state at a checkpoint).
 #include <memory>
 
 #include "case_config.hpp"

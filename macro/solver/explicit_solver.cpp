@@ -802,11 +802,6 @@ void ExplicitSolver::resume_part(const SolverCheckpoint& c) {
   save_state();
 }
 
-void ExplicitSolver::adopt_run_state(const ExplicitSolver& run) {
-  if (share_) throw std::logic_error("ExplicitSolver::adopt_run_state: for a solver of the whole body");
-  take_run_state(run.st_, run.counters_);  // the particles' last forces are read_particle's
-}
-
 namespace {
 template <class Block>
 std::size_t state_bytes_per_particle(const Block&) {
@@ -814,6 +809,30 @@ std::size_t state_bytes_per_particle(const Block&) {
 }
 std::size_t doubles_for(std::size_t bytes) { return (bytes + sizeof(double) - 1) / sizeof(double); }
 }  // namespace
+
+SolverCheckpoint ExplicitSolver::body_checkpoint(std::size_t total, const double* records, std::size_t stride) const {
+  if (!share_ || p_.n == 0) throw std::logic_error("ExplicitSolver::body_checkpoint: for a rank solver that holds particles");
+  SolverCheckpoint c;
+  std::size_t at = 0;  // the field's place in a record (write_particle's order)
+  for (const EvolvingField& f : kEvolvingFields) {
+    const std::size_t w = (p_.*f.field).size() / p_.n;
+    std::vector<double> values(w * total);
+    for (std::size_t k = 0; k < total; ++k) std::copy(records + stride * k + at, records + stride * k + at + w, values.data() + w * k);
+    c.particle_fields.emplace_back(f.name, std::move(values));
+    at += w;
+  }
+  const std::size_t bytes = std::visit([](const auto& b) { return state_bytes_per_particle(b); }, material_);
+  c.material_states.resize(bytes * total);
+  for (std::size_t k = 0; k < total; ++k) std::memcpy(c.material_states.data() + bytes * k, records + stride * k + at, bytes);
+  // The run's state, with the whole body's last forces: those the records carry (as read_particle takes them).
+  c.state = st_;
+  for (const auto& [name, values] : c.particle_fields) {
+    if (name == "f_ext") c.state.f_ext_old = values;
+    if (name == "f_contact") c.state.f_contact_old = values;
+  }
+  c.counters = counters_;
+  return c;
+}
 
 std::size_t ExplicitSolver::particle_record_width() const {
   std::size_t width = 0;

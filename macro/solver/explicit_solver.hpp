@@ -191,11 +191,12 @@ class ExplicitSolver {
   void drop_shape_cache();
   // Checkpoints of a distributed run, which are those of one process (any rank count resumes them):
   // resume_part, on a rank solver after initialize(), takes its particles (by global id) and the run's
-  // state from a checkpoint of the whole body; adopt_run_state makes a solver of the whole body that
-  // holds the ranks' particles (read_particle) carry `run`'s time, step, books and sphere, so that its
-  // checkpoint() is the run's.
+  // state from a checkpoint of the whole body; body_checkpoint, on a rank solver, is the whole body's
+  // checkpoint from every particle's record (write_particle's, then stride - particle_record_width()
+  // more doubles) in the order of their ids, with this rank's time, step, books and sphere: what
+  // checkpoint() gives in one process.
   void resume_part(const SolverCheckpoint& checkpoint);
-  void adopt_run_state(const ExplicitSolver& run);
+  SolverCheckpoint body_checkpoint(std::size_t total, const double* records, std::size_t stride) const;
 
   double time() const { return st_.time_s; }
   double dt() const { return options_.fixed_dt_s > 0 ? options_.fixed_dt_s : st_.dt_s; }
