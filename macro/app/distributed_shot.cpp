@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -39,15 +40,16 @@ class DistributedShot final : public ShotStepper {
   bool writes() const override { return rank_ == 0; }
 
   // Each rank fills its own particles' records; rank 0 gathers them in the order of their ids.
-  const std::vector<double>& field_records(const FieldRecords& records) override {
+  FieldOutput::RecordSource field_records(const FieldRecords& records) override {
     distributed::ParticleSet mine(static_cast<int>(records.width()));
     std::vector<double> record(records.width());
     each_owned([&](std::size_t i, std::uint32_t id) {
       records.fill(run_.solver(), i, record.data());
       mine.push_back(id, record.data());
     });
-    records_ = distributed::gather(mine, MPI_COMM_WORLD, 0).values;
-    return records_;
+    auto all = std::make_shared<const distributed::ParticleSet>(distributed::gather(mine, MPI_COMM_WORLD, 0));
+    if (rank_ != 0) return {};
+    return [all](std::size_t i, double* out) { std::copy(all->at(i), all->at(i) + all->width, out); };
   }
 
   const Particles* body_particles() override {
@@ -169,7 +171,6 @@ class DistributedShot final : public ShotStepper {
   const MaterialSet& law_;
   DistributedRun run_;
   int rank_ = 0;
-  std::vector<double> records_;  // rank 0: the body's field records, gathered
   Particles body_now_;           // rank 0: the body's positions, velocities, masses and spacings
 };
 

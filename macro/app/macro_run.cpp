@@ -310,8 +310,8 @@ void run_macro(const MacroRunArgs& args) {
   const FieldRecords field_records(shot->solver().material(), full.has_value());  // every rank fills its own
   const auto write_fields = [&] {
     const std::vector<std::uint8_t> fragments = full ? shot->fragment_flags() : std::vector<std::uint8_t>{};
-    const std::vector<double>& records = shot->field_records(field_records);
-    if (fields) fields->write(shot->solver(), records, fragments);
+    const FieldOutput::RecordSource records = shot->field_records(field_records);
+    if (fields) fields->write(shot->solver(), body.size(), records, fragments);
   };
   History history = resumed ? History(resumed->history_text, resumed->history_rows) : History();
   const auto save_history = [&] {

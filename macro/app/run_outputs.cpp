@@ -51,24 +51,23 @@ void FieldRecords::fill(const ExplicitSolver& s, std::size_t i, double* r) const
   }
 }
 
-void FieldOutput::write(const ExplicitSolver& run, const std::vector<double>& records,
+void FieldOutput::write(const ExplicitSolver& run, std::size_t n, const RecordSource& record_of,
                         const std::vector<std::uint8_t>& fragments) {
   if (run.time() <= last_time_) return;
-  const std::size_t width = records_.width(), n = records.size() / width;
-  // The records' columns, each field contiguous (components interleaved), in the records' order.
-  column_.resize(records.size());
-  std::vector<ParticleField> fields;
-  std::size_t start = 0, at = 0;  // where the next field's column starts, and its offset in a record
-  const auto add = [&](const std::string& name, const char* unit, int components) {
-    double* column = column_.data() + start;
-    for (std::size_t i = 0; i < n; ++i)
-      for (int c = 0; c < components; ++c) column[components * i + c] = records[width * i + at + c];
-    if (at > 0) fields.push_back({name, unit, components, column});  // (the position is the writer's own)
-    start += n * components;
-    at += components;
-    return column;
+  // The records' columns, each field contiguous (components interleaved), in the body's order.
+  struct Column {
+    std::string name;
+    const char* unit;
+    int components;
+    std::size_t start;  // in column_
   };
-  const double* x = add("position", "m", 3);
+  std::vector<Column> columns;
+  std::size_t start = 0;
+  const auto add = [&](const std::string& name, const char* unit, int components) {
+    columns.push_back({name, unit, components, start});
+    start += n * static_cast<std::size_t>(components);
+  };
+  add("position", "m", 3);  // (the writer's own, not a field)
   add("velocity", "m/s", 3);
   add("pressure", "Pa", 1);
   add("equivalent_stress", "Pa", 1);
@@ -76,8 +75,19 @@ void FieldOutput::write(const ExplicitSolver& run, const std::vector<double>& re
   add("dissipated_J_m3", "J/m^3", 1);
   // The law's fields, each written as its own scalar array.
   for (const std::string& name : records_.law_fields()) add(name, "1", 1);
+  if (full_) add("stress", "Pa", 6);
+  column_.resize(start);
+  std::vector<double> record(records_.width());
+  for (std::size_t i = 0; i < n; ++i) {
+    record_of(i, record.data());
+    const double* r = record.data();
+    for (const Column& c : columns)
+      for (int k = 0; k < c.components; ++k) column_[c.start + static_cast<std::size_t>(c.components) * i + k] = *r++;
+  }
+  std::vector<ParticleField> fields;
+  for (std::size_t k = 1; k < columns.size(); ++k)
+    fields.push_back({columns[k].name, columns[k].unit, columns[k].components, column_.data() + columns[k].start});
   if (full_) {
-    add("stress", "Pa", 6);
     fragment_.resize(n);
     id_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -88,7 +98,7 @@ void FieldOutput::write(const ExplicitSolver& run, const std::vector<double>& re
     fields.push_back({"particle_id", "1", 1, id_.data()});
     fields.push_back({"reference_position", "m", 3, full_->reference_position->data()});
   }
-  writer_.write_step(run.time(), n, 3, x, fields);
+  writer_.write_step(run.time(), n, 3, column_.data(), fields);
   const RigidSphere& sphere = run.sphere();
   sphere_writer_.write_step(run.time(), 1, 3, sphere.x.data(),
                             {{"radius", "m", 1, &sphere.radius_m}, {"velocity", "m/s", 3, sphere.v.data()}});

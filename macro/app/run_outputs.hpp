@@ -11,6 +11,7 @@
 //   BalanceTracker the worst energy and momentum balance errors over the run
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -66,10 +67,13 @@ class FieldOutput {
   FieldOutput(const std::filesystem::path& dir, const MaterialSet& material, const FieldOutputState& resumed,
               std::optional<FullFields> full = {});
   FieldOutputState state() const { return {writer_.steps(), sphere_writer_.steps(), last_time_}; }
+  // Fills particle i's record (FieldRecords) into the buffer given.
+  using RecordSource = std::function<void(std::size_t i, double* record)>;
   // Appends a state (skipped when a state of the same time was written last): the time and sphere from
-  // `run`, the particles from `records` (the body's, in its order: FieldRecords), and with the full set
+  // `run`, the body's n particles from `record_of` (ShotStepper::field_records), and with the full set
   // their fragment flags (ShotStepper::fragment_flags).
-  void write(const ExplicitSolver& run, const std::vector<double>& records, const std::vector<std::uint8_t>& fragments);
+  void write(const ExplicitSolver& run, std::size_t n, const RecordSource& record_of,
+             const std::vector<std::uint8_t>& fragments);
   void write_provenance(const Provenance& provenance) {
     writer_.write_provenance(provenance);
     sphere_writer_.write_provenance(provenance);

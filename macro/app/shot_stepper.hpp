@@ -25,9 +25,10 @@ class ShotStepper {
   virtual const ExplicitSolver& solver() const = 0;
   // Whether this rank writes the run's files (one rank does).
   virtual bool writes() const = 0;
-  // Every particle's field record as it is now (FieldRecords), in the body's order (collective): on the
-  // rank that writes; empty on the others.
-  virtual const std::vector<double>& field_records(const FieldRecords& records) = 0;
+  // Every particle's field record as it is now (FieldRecords), by its index in the body (collective): on
+  // the rank that writes, the source FieldOutput::write reads them from; an empty function on the
+  // others. What a source holds is freed with it.
+  virtual FieldOutput::RecordSource field_records(const FieldRecords& records) = 0;
   // The body's particles as they are now (collective), for the results: on the rank that writes, their
   // positions, velocities, masses and spacings (other fields may be empty); nullptr on the others.
   virtual const Particles* body_particles() = 0;
@@ -59,11 +60,8 @@ class OneProcessShot final : public ShotStepper {
   bool step() override { return solver_.step(); }
   const ExplicitSolver& solver() const override { return solver_; }
   bool writes() const override { return true; }
-  const std::vector<double>& field_records(const FieldRecords& records) override {
-    const std::size_t n = solver_.particles().n, width = records.width();
-    records_.resize(n * width);
-    for (std::size_t i = 0; i < n; ++i) records.fill(solver_, i, records_.data() + width * i);
-    return records_;
+  FieldOutput::RecordSource field_records(const FieldRecords& records) override {
+    return [this, &records](std::size_t i, double* record) { records.fill(solver_, i, record); };
   }
   const Particles* body_particles() override { return &solver_.particles(); }
   FailureReport failure() override { return solver_.failure(); }
@@ -86,7 +84,6 @@ class OneProcessShot final : public ShotStepper {
 
  private:
   ExplicitSolver& solver_;
-  std::vector<double> records_;
 };
 
 }  // namespace uhpc::macro
