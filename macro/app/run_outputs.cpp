@@ -33,7 +33,14 @@ ParticleFieldWriter FieldOutput::resumed_writer(const std::filesystem::path& dir
   }
 }
 
-FieldRecords::FieldRecords(const MaterialSet& material, bool full) : law_fields_(law_output_fields(material)), full_(full) {}
+FieldRecords::FieldRecords(const MaterialSet& material, bool full) : full_(full) {
+  fields_ = {{"position", "m", 3},         {"velocity", "m/s", 3}, {"pressure", "Pa", 1},
+             {"equivalent_stress", "Pa", 1}, {"volume", "m^3", 1},  {"dissipated_J_m3", "J/m^3", 1}};
+  // The law's fields, each its own scalar array.
+  for (const std::string& name : law_output_fields(material)) fields_.push_back({name, "1", 1}), ++laws_;
+  if (full_) fields_.push_back({"stress", "Pa", 6});
+  for (const Field& f : fields_) width_ += static_cast<std::size_t>(f.components);
+}
 
 void FieldRecords::fill(const ExplicitSolver& s, std::size_t i, double* r) const {
   const Particles& p = s.particles();
@@ -43,10 +50,11 @@ void FieldRecords::fill(const ExplicitSolver& s, std::size_t i, double* r) const
   r[7] = von_mises(stress);
   r[8] = p.volume[i];
   r[9] = s.dissipated_density(i);
-  law_output_values_at(s.material(), i, r + kStandard);
+  constexpr std::size_t kLaw = 10;  // the law's fields follow the ten values above (fields_' order)
+  law_output_values_at(s.material(), i, r + kLaw);
   if (full_) {  // the stored 3 x 3 (row-major) as XDMF's symmetric Tensor6
     constexpr int kTensor6[6] = {0, 1, 2, 4, 5, 8};
-    double* t = r + kStandard + law_fields_.size();
+    double* t = r + kLaw + laws_;
     for (int c = 0; c < 6; ++c) t[c] = p.stress[9 * i + kTensor6[c]];
   }
 }
@@ -55,38 +63,26 @@ void FieldOutput::write(const ExplicitSolver& run, std::size_t n, const RecordSo
                         const std::vector<std::uint8_t>& fragments) {
   if (run.time() <= last_time_) return;
   // The records' columns, each field contiguous (components interleaved), in the body's order.
-  struct Column {
-    std::string name;
-    const char* unit;
-    int components;
-    std::size_t start;  // in column_
-  };
-  std::vector<Column> columns;
+  const std::vector<FieldRecords::Field>& columns = records_.fields();
+  std::vector<std::size_t> starts;  // where each column starts in column_
   std::size_t start = 0;
-  const auto add = [&](const std::string& name, const char* unit, int components) {
-    columns.push_back({name, unit, components, start});
-    start += n * static_cast<std::size_t>(components);
-  };
-  add("position", "m", 3);  // (the writer's own, not a field)
-  add("velocity", "m/s", 3);
-  add("pressure", "Pa", 1);
-  add("equivalent_stress", "Pa", 1);
-  add("volume", "m^3", 1);
-  add("dissipated_J_m3", "J/m^3", 1);
-  // The law's fields, each written as its own scalar array.
-  for (const std::string& name : records_.law_fields()) add(name, "1", 1);
-  if (full_) add("stress", "Pa", 6);
+  for (const FieldRecords::Field& f : columns) {
+    starts.push_back(start);
+    start += n * static_cast<std::size_t>(f.components);
+  }
   column_.resize(start);
   std::vector<double> record(records_.width());
   for (std::size_t i = 0; i < n; ++i) {
     record_of(i, record.data());
     const double* r = record.data();
-    for (const Column& c : columns)
-      for (int k = 0; k < c.components; ++k) column_[c.start + static_cast<std::size_t>(c.components) * i + k] = *r++;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const auto w = static_cast<std::size_t>(columns[c].components);
+      for (std::size_t k = 0; k < w; ++k) column_[starts[c] + w * i + k] = *r++;
+    }
   }
-  std::vector<ParticleField> fields;
-  for (std::size_t k = 1; k < columns.size(); ++k)
-    fields.push_back({columns[k].name, columns[k].unit, columns[k].components, column_.data() + columns[k].start});
+  std::vector<ParticleField> fields;  // (the position is the writer's own, not a field)
+  for (std::size_t c = 1; c < columns.size(); ++c)
+    fields.push_back({columns[c].name, columns[c].units, columns[c].components, column_.data() + starts[c]});
   if (full_) {
     fragment_.resize(n);
     id_.resize(n);

@@ -44,16 +44,20 @@ struct FullFields {
 // them (ShotStepper::field_records), so no rank needs the whole body's state.
 class FieldRecords {
  public:
+  struct Field {
+    std::string name, units;
+    int components;
+  };
   FieldRecords(const MaterialSet& material, bool full);
-  std::size_t width() const { return kStandard + law_fields_.size() + (full_ ? 6 : 0); }
+  // The record's fields in its order ("position" first); width() doubles in all.
+  const std::vector<Field>& fields() const { return fields_; }
+  std::size_t width() const { return width_; }
   // Particle i of `s` into record (width() doubles).
   void fill(const ExplicitSolver& s, std::size_t i, double* record) const;
-  const std::vector<std::string>& law_fields() const { return law_fields_; }
-  bool full() const { return full_; }
-  static constexpr std::size_t kStandard = 10;  // x, v, pressure, equivalent stress, volume, dissipated
 
  private:
-  std::vector<std::string> law_fields_;
+  std::vector<Field> fields_;
+  std::size_t laws_ = 0, width_ = 0;  // the law's fields; the doubles of a record
   bool full_;
 };
 
